@@ -1,0 +1,67 @@
+#include "core/camera.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace prism {
+
+void Camera::fit_to_aspect(float aspect) {
+  const float tan_h = std::tan(radians(hfov_deg) * 0.5f);
+  const float tan_v = std::tan(radians(vfov_deg) * 0.5f);
+  if (tan_h / tan_v < aspect) {
+    hfov_deg = degrees(2.0f * std::atan(tan_v * aspect));
+  } else {
+    vfov_deg = degrees(2.0f * std::atan(tan_h / aspect));
+  }
+}
+
+void Camera::validate() const {
+  const ErrorLocation where{{}, 0, "camera"};
+  if (!is_finite(position) || !is_finite(target) || !is_finite(up)) {
+    throw Error(ErrorKind::kInput, "camera position, target and up must be finite", where);
+  }
+  const Vec3 view = target - position;
+  if (glm::length(view) == 0.0f) {
+    throw Error(ErrorKind::kInput, "camera position and target coincide", where);
+  }
+  if (glm::length(glm::cross(glm::normalize(view), up)) < 1e-6f) {
+    throw Error(ErrorKind::kInput, "camera up vector is parallel to the view direction", where);
+  }
+  if (!(hfov_deg > 0.0f && hfov_deg < 180.0f && vfov_deg > 0.0f && vfov_deg < 180.0f)) {
+    throw Error(ErrorKind::kInput, "field of view must be between 0 and 180 degrees", where);
+  }
+  if (!(lens_radius >= 0.0f) || !(focal_distance > 0.0f) || !std::isfinite(lens_radius) ||
+      !std::isfinite(focal_distance)) {
+    throw Error(ErrorKind::kInput, "lens radius must be >= 0 and focal distance > 0", where);
+  }
+}
+
+Ray Camera::generate_ray(Vec2 film, Vec2 lens) const {
+  const Vec3 forward = glm::normalize(target - position);
+  const Vec3 right = glm::normalize(glm::cross(forward, up));
+  const Vec3 true_up = glm::cross(right, forward);
+  const float sx = (2.0f * film.x - 1.0f) * std::tan(radians(hfov_deg) * 0.5f);
+  const float sy = (1.0f - 2.0f * film.y) * std::tan(radians(vfov_deg) * 0.5f);
+  // Direction in camera space has view-axis component 1, so t along it is view depth.
+  const Vec3 camera_dir{sx, sy, 1.0f};
+  Vec3 origin_cam{0.0f};
+  Vec3 dir_cam = camera_dir;
+  if (lens_radius > 0.0f) {
+    // Uniform disk sample by polar mapping; refocus through the plane at focal_distance.
+    const float r = lens_radius * std::sqrt(lens.x);
+    const float phi = 2.0f * kPi * lens.y;
+    origin_cam = Vec3(r * std::cos(phi), r * std::sin(phi), 0.0f);
+    dir_cam = camera_dir * focal_distance - origin_cam;
+  }
+  const float length = glm::length(dir_cam);
+  const float depth_per_t = dir_cam.z / length;
+  Ray ray;
+  ray.origin = position + origin_cam.x * right + origin_cam.y * true_up;
+  ray.direction = glm::normalize(dir_cam.x * right + dir_cam.y * true_up + dir_cam.z * forward);
+  ray.tmin = znear / depth_per_t;
+  ray.tmax = zfar / depth_per_t;
+  return ray;
+}
+
+}  // namespace prism

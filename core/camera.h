@@ -1,0 +1,34 @@
+#pragma once
+
+#include "core/math.h"
+#include "core/ray.h"
+
+namespace prism {
+
+/// Pinhole or thin-lens perspective camera in world space.
+struct Camera {
+  Vec3 position{0.0f, 0.0f, 5.0f};
+  Vec3 target{0.0f};  ///< a point the camera looks at
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  float hfov_deg = 50.0f;       ///< full horizontal field of view
+  float vfov_deg = 37.5f;       ///< full vertical field of view
+  float znear = 0.01f;          ///< rays start at this distance along the view axis
+  float zfar = 1e30f;           ///< and end at this one
+  float lens_radius = 0.0f;     ///< 0 for a pinhole
+  float focal_distance = 1.0f;  ///< distance of the plane in focus (thin lens only)
+
+  /// Widens (never narrows) one field of view so that tan(hfov/2) / tan(vfov/2) == aspect
+  /// (width / height of the output image).
+  void fit_to_aspect(float aspect);
+
+  /// Throws Error(kInput) if the camera is degenerate (position == target, up parallel to the
+  /// view direction, fov outside (0, 180), non-finite values).
+  void validate() const;
+
+  /// The primary ray through film position `film` in [0,1]^2 ((0,0) is the top-left corner of
+  /// the image, x to the right, y down), using `lens` in [0,1)^2 when lens_radius > 0.
+  /// The direction is unit length; tmin/tmax bound the view-axis distance to [znear, zfar].
+  Ray generate_ray(Vec2 film, Vec2 lens = Vec2(0.5f)) const;
+};
+
+}  // namespace prism

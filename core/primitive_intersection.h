@@ -1,0 +1,41 @@
+#pragma once
+
+// The ray-primitive tests shared by every backend that does its own traversal (brute, bvh) and
+// by Embree's user geometry for spheres, so backends can differ only in traversal.
+
+#include <optional>
+
+#include "core/math.h"
+#include "core/ray.h"
+
+namespace prism {
+
+/// Parametric hit on one primitive: t along the ray, (u, v) as Hit defines them.
+struct PrimitiveHit {
+  float t, u, v;
+};
+
+/// Per-ray constants of the watertight triangle test (Woop, Benthin, Wald 2013): the axis
+/// permutation that makes the direction's largest component z, and the shear that maps the
+/// direction to +z.
+struct WatertightRay {
+  explicit WatertightRay(const Ray& ray);
+
+  Vec3 origin;
+  int kx, ky, kz;
+  float shear_x, shear_y, shear_z;
+  float tmin, tmax;
+};
+
+/// Watertight ray/triangle test: a ray through a shared edge or vertex hits at least one of the
+/// triangles sharing it. Both faces count. Returns the hit with t in [tmin, tmax], u, v in
+/// Embree's convention (p = (1-u-v) p0 + u p1 + v p2), or nothing.
+std::optional<PrimitiveHit> intersect_triangle(const WatertightRay& ray, const Vec3& p0,
+                                               const Vec3& p1, const Vec3& p2);
+
+/// Ray/sphere test: the nearest root of |o + t d - c| = r with t in [tmin, tmax] (the far root
+/// when the near one is outside the interval). u = phi / 2pi, v = theta / pi of the hit point
+/// about the centre (z is the pole axis).
+std::optional<PrimitiveHit> intersect_sphere(const Ray& ray, const Vec3& center, float radius);
+
+}  // namespace prism

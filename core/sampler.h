@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "core/math.h"
+
+namespace prism {
+
+/// Source of sample values in [0, 1). Every value is a pure function of (pixel, sample index,
+/// dimension, seed), so images do not depend on thread count, tile order or scheduling.
+/// A Sampler instance is used by one thread at a time; clone() one per thread.
+class Sampler {
+ public:
+  virtual ~Sampler() = default;
+  virtual std::string_view name() const = 0;
+  /// Positions the sampler at sample `index` of `pixel`; the dimension counter restarts at 0.
+  virtual void start_pixel_sample(glm::ivec2 pixel, uint32_t index) = 0;
+  /// The next dimension's value in [0, 1).
+  virtual float get_1d() = 0;
+  /// The next two dimensions' values in [0, 1)^2.
+  virtual Vec2 get_2d() = 0;
+  virtual std::unique_ptr<Sampler> clone() const = 0;
+};
+
+/// Uniform independent samples from a counter-based hash of (pixel, index, dimension, seed).
+class IndependentSampler final : public Sampler {
+ public:
+  explicit IndependentSampler(uint64_t seed) : seed_(seed) {}
+  std::string_view name() const override { return "independent"; }
+  void start_pixel_sample(glm::ivec2 pixel, uint32_t index) override;
+  float get_1d() override;
+  Vec2 get_2d() override;
+  std::unique_ptr<Sampler> clone() const override;
+
+ private:
+  uint64_t seed_;
+  uint64_t stream_ = 0;
+  uint32_t dimension_ = 0;
+};
+
+/// 64-bit finalizer (SplitMix64): a bijective avalanche hash.
+uint64_t mix_bits(uint64_t v);
+/// Maps 32 random bits to a float in [0, 1).
+float bits_to_unit_float(uint32_t bits);
+
+}  // namespace prism

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/hit.h"
+#include "core/light.h"
+#include "core/material.h"
+#include "core/ray.h"
+#include "core/scene_geometry.h"
+
+namespace prism {
+
+/// Render settings a scene file may carry. Command-line flags override every one of them.
+struct SceneRenderSettings {
+  std::optional<int> width, height;
+  std::optional<int> spp;
+  std::optional<int> max_depth;
+  std::optional<std::string> integrator;
+  std::optional<uint64_t> seed;
+};
+
+/// Local geometry at a hit, computed the same way for every accelerator.
+struct SurfaceInteraction {
+  Vec3 position;          ///< rebuilt from (prim, u, v), not from origin + t * dir
+  Vec3 geometric_normal;  ///< unit; in the hemisphere of the shading normal
+  Vec3 shading_normal;    ///< unit; interpolated per-corner normal, else the geometric one
+  Vec2 uv;
+  float t = 0.0f;
+  uint32_t material_id = 0;
+  uint32_t geom_id = 0;
+  uint32_t prim_id = 0;
+};
+
+/// A loaded scene: plain data, independent of any accelerator.
+struct Scene {
+  std::string source;  ///< file it came from, or a description for built-in scenes
+  SceneGeometry geometry;
+  std::vector<Material> materials;
+  std::vector<Light> lights;
+  Camera camera;
+  SceneRenderSettings settings;
+
+  /// The surface at `hit` of `ray` (hit must come from an accelerator built on this geometry).
+  SurfaceInteraction surface_at(const Ray& ray, const Hit& hit) const;
+
+  /// Checks geometry, camera, and every material id: throws Error(kInput) naming the element.
+  void validate() const;
+};
+
+/// A point offset off a surface along its geometric normal by an amount that scales with the
+/// point's magnitude, so secondary rays from it do not re-hit the same surface. `toward` is the
+/// side (direction of the new ray) to move to. Shared by all backends.
+Vec3 offset_ray_origin(const Vec3& p, const Vec3& geometric_normal, const Vec3& toward);
+
+}  // namespace prism

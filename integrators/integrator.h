@@ -1,0 +1,54 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "accel/accelerator.h"
+#include "core/camera.h"
+#include "core/film.h"
+#include "core/progress.h"
+#include "core/registry.h"
+#include "core/sampler.h"
+#include "core/scene.h"
+
+namespace prism {
+
+/// Everything an integrator reads while rendering. All references outlive render().
+struct RenderContext {
+  const Scene& scene;
+  const Accelerator& accel;
+  const Camera& camera;  ///< already fitted to the film's aspect ratio
+  const Sampler& sampler_prototype;
+  int spp = 1;
+  ProgressReporter* progress = nullptr;  ///< may be null; advanced once per finished tile row
+};
+
+/// Produces an image of a scene. Implementations are chosen by name from integrator_registry().
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual std::string_view name() const = 0;
+  /// Renders into `film` (whose size is the output resolution). Deterministic for a given
+  /// context: the result does not depend on the number of threads.
+  virtual void render(const RenderContext& context, Film& film) const = 0;
+  /// Units of progress render() reports for a film of this size (for ProgressReporter).
+  virtual uint64_t progress_total(int width, int height, int spp) const;
+};
+
+/// Integrators that estimate radiance independently per camera ray: the parallel tile loop,
+/// per-thread sampler clones and the camera-ray generation live here; subclasses implement li().
+class PixelIntegrator : public Integrator {
+ public:
+  void render(const RenderContext& context, Film& film) const override;
+  uint64_t progress_total(int width, int height, int spp) const override;
+
+ protected:
+  /// Radiance arriving along `ray` (a camera ray). Called concurrently from many threads.
+  virtual Rgb li(const Ray& ray, Sampler& sampler, const RenderContext& context) const = 0;
+};
+
+/// The table of integrators. Parameters use the integrator's name as prefix.
+const Registry<Integrator>& integrator_registry();
+
+}  // namespace prism

@@ -1,0 +1,119 @@
+#include "tests/test_support.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+
+namespace prism::test {
+
+std::optional<std::filesystem::path> cs184_scene_dir() {
+  const std::filesystem::path dir = std::filesystem::path(PRISM_SHARED_DIR) / "scenes" / "cs184";
+  if (std::filesystem::is_directory(dir)) return dir;
+  return std::nullopt;
+}
+
+std::optional<std::filesystem::path> cs184_scene(const std::string& file_name) {
+  const auto dir = cs184_scene_dir();
+  if (!dir || !std::filesystem::exists(*dir / file_name)) return std::nullopt;
+  return *dir / file_name;
+}
+
+std::vector<std::string> cs184_scene_names() {
+  std::vector<std::string> names;
+  if (const auto dir = cs184_scene_dir()) {
+    for (const auto& e : std::filesystem::directory_iterator(*dir)) {
+      if (e.path().extension() == ".dae") names.push_back(e.path().filename().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::filesystem::path make_temp_dir(const std::string& tag) {
+  std::random_device rd;
+  const auto dir =
+      std::filesystem::temp_directory_path() /
+      ("prism_test_" + tag + "_" + std::to_string(getpid()) + "_" + std::to_string(rd()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+ProgramResult run_prism(const std::vector<std::string>& args, int timeout_seconds) {
+  int out_pipe[2], err_pipe[2];
+  if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) throw std::runtime_error("pipe failed");
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    dup2(out_pipe[1], STDOUT_FILENO);
+    dup2(err_pipe[1], STDERR_FILENO);
+    close(out_pipe[0]);
+    close(err_pipe[0]);
+    std::vector<char*> argv;
+    std::string program = PRISM_BINARY;
+    argv.push_back(program.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(program.c_str(), argv.data());
+    _exit(127);
+  }
+  close(out_pipe[1]);
+  close(err_pipe[1]);
+  ProgramResult result;
+  pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_seconds);
+  int open_fds = 2;
+  bool killed = false;
+  char buf[4096];
+  while (open_fds > 0) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                          deadline - std::chrono::steady_clock::now())
+                          .count();
+    if (left <= 0) {
+      kill(pid, SIGKILL);
+      killed = true;
+      break;
+    }
+    if (poll(fds, 2, static_cast<int>(std::min<long long>(left, 1000))) < 0) break;
+    for (int i = 0; i < 2; ++i) {
+      if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP))) continue;
+      const ssize_t n = read(fds[i].fd, buf, sizeof buf);
+      if (n <= 0) {
+        close(fds[i].fd);
+        fds[i].fd = -1;
+        --open_fds;
+      } else {
+        (i == 0 ? result.out : result.err).append(buf, size_t(n));
+      }
+    }
+  }
+  for (auto& f : fds) {
+    if (f.fd >= 0) close(f.fd);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (killed) {
+    result.exit_code = -9;
+  } else if (WIFEXITED(status)) {
+    result.exit_code = WEXITSTATUS(status);
+  } else {
+    result.exit_code = -WTERMSIG(status);
+  }
+  return result;
+}
+
+}  // namespace prism::test

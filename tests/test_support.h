@@ -1,0 +1,42 @@
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace prism::test {
+
+/// ../shared/scenes/cs184 beside the repository, if present.
+std::optional<std::filesystem::path> cs184_scene_dir();
+
+/// Path of one CS184 scene ("CBbunny.dae"), or nothing when ../shared is absent.
+std::optional<std::filesystem::path> cs184_scene(const std::string& file_name);
+
+/// File names of every *.dae in the shared CS184 folder (empty when absent), sorted.
+std::vector<std::string> cs184_scene_names();
+
+/// A fresh empty temporary directory, removed by the caller (or left in /tmp).
+std::filesystem::path make_temp_dir(const std::string& tag);
+
+/// Result of running the prism program.
+struct ProgramResult {
+  int exit_code = -1;
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+/// Runs the built prism program with `args` (no shell; arguments passed as they are), with a
+/// time limit in seconds after which it is killed (exit_code is then -9).
+ProgramResult run_prism(const std::vector<std::string>& args, int timeout_seconds = 120);
+
+/// Writes `text` to `path`.
+void write_text(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace prism::test
+
+/// Skips the current test with a message when the shared CS184 scenes are absent.
+#define PRISM_REQUIRE_CS184(var, file_name)                                                \
+  const auto var##_opt = ::prism::test::cs184_scene(file_name);                            \
+  if (!var##_opt) GTEST_SKIP() << "../shared/scenes/cs184 absent: skipping " << file_name; \
+  const std::filesystem::path var = *var##_opt
