@@ -1,1 +1,184 @@
-// Placeholder translation unit until the command-line driver lands.
+// The command-line grammar (CLI11): which words and flags exist and where their values go.
+
+#include "core/app/cli.h"
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "accel/accelerator.h"
+#include "core/app/commands.h"
+#include "core/app/provenance.h"
+#include "core/error.h"
+#include "core/samplers.h"
+#include "integrators/integrator.h"
+
+namespace prism {
+namespace {
+
+constexpr std::array<const char*, 4> kCommands = {"render", "info", "list", "colorspaces"};
+
+/// `prism render --help`'s footer; the defaults come from the constants the code uses.
+std::string render_footer() {
+  return fmt::format(
+      R"(Defaults: SCENE is the bundled Cornell box with two spheres. Flags override the
+scene file's settings, which override prism's defaults: resolution {} x {}, {} spp,
+integrator '{}', accelerator '{}', sampler '{}', seed {}, all hardware threads.
+
+Output: -f FILE picks the format by extension. FILE.exr writes a scene-linear EXR (add --png
+for FILE.png beside it); FILE.png/.jpg/.tif writes only that display-referred image (add --exr
+for FILE.exr beside it). Without -f, prism writes <scene name>.exr in the current folder.
+Files are written atomically: a failed render leaves no partial file.
+
+Exit codes: 0 success, 2 bad command line or scene, 3 output or resource failure, 1 internal.
+Typing `render` is optional: `prism -s 64 -r 480 360 -f out.png scene.dae` renders too.)",
+      kDefaultWidth, kDefaultHeight, kDefaultSpp, kDefaultIntegrator, kDefaultAccelerator,
+      kDefaultSampler, kDefaultSeed);
+}
+
+/// argv without the program name, with "render" put first when the first argument is neither a
+/// command nor a top-level flag: CLI11 2.1 has no default subcommand.
+std::vector<std::string> arguments_with_default_command(int argc, const char* const* argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) return args;
+  const std::string& first = args.front();
+  const bool is_command = std::find(kCommands.begin(), kCommands.end(), first) != kCommands.end();
+  const bool is_top_level_flag = first == "-h" || first == "--help" || first == "--version";
+  if (!is_command && !is_top_level_flag) args.insert(args.begin(), "render");
+  return args;
+}
+
+void add_color_options(CLI::App& command, ColorOptions& color) {
+  command.add_option("--ocio-config", color.ocio_config,
+                     "OpenColorIO config file (default: $OCIO, else the bundled config)");
+  command.add_option("--working-space", color.working_space,
+                     "colour space rendering happens in (default: the config's scene_linear)");
+  command.add_option("--output-space", color.output_space,
+                     "colour space of the EXR (default: the config's scene_linear)");
+  command.add_option("--display", color.display, "display for PNG/JPEG/TIFF output");
+  command.add_option("--view", color.view, "view of that display");
+  command.add_option("--look", color.look, "look applied with the view");
+  command.add_option("--exposure", color.exposure,
+                     "exposure in stops, for display-referred output only");
+}
+
+void add_render_options(CLI::App& render, RenderOptions& o) {
+  render.add_option("scene", o.scene, "scene file (.dae or .json)");
+  render
+      .add_option("--accel", o.accelerator, "accelerator: " + accelerator_registry().names_joined())
+      ->capture_default_str();
+  render.add_option("--integrator", o.integrator,
+                    "integrator: " + integrator_registry().names_joined() +
+                        " (default: the scene's, else " + kDefaultIntegrator + ")");
+  render.add_option("--sampler", o.sampler, "sampler: " + sampler_registry().names_joined())
+      ->capture_default_str();
+  render.add_option("-s,--spp", o.spp, "camera rays per pixel");
+  render.add_option("-l,--light-samples", o.light_samples, "samples per area light");
+  render.add_option("-m,--max-depth", o.max_depth, "maximum ray depth");
+  render.add_option("-t,--threads", o.threads, "worker threads; 0 = all (default)");
+  render.add_option("--seed", o.seed, "sampler seed (non-negative integer)");
+  render.add_option("-r,--resolution", o.resolution, "image width and height in pixels")
+      ->type_name("W H");
+  render.add_option("-f,--output", o.output, "output file: .exr, .png, .jpg or .tif");
+  render.add_flag("--png", o.png, "also write a PNG beside the EXR");
+  render.add_flag("--exr", o.exr, "also write an EXR beside a PNG/JPEG/TIFF output");
+  render.add_option("-a,--adaptive", o.adaptive, "adaptive sampling batch size and tolerance")
+      ->type_name("B TOL");
+  render.add_flag("-H,--hemisphere", o.hemisphere_sampling,
+                  "direct light by uniform hemisphere sampling");
+  render.add_option("-b,--lens-radius", o.lens_radius, "thin-lens aperture radius (0: pinhole)");
+  render.add_option("-d,--focal-distance", o.focal_distance, "distance of the plane in focus");
+  render.add_option("-e,--environment", o.environment_map, "environment map (not supported yet)");
+  render.add_option("-c,--camera-file", o.camera_file, "camera settings (not supported yet)");
+  // allow_extra_args(false): one value per --set, so `--set k=v scene.dae` keeps its scene.
+  render.add_option("--set", o.set, "component parameter key=value, e.g. bvh.max_leaf_size=4")
+      ->allow_extra_args(false);
+  render.add_flag("-q,--quiet", o.quiet, "no progress output");
+  render.add_flag("--literal-camera", o.literal_camera,
+                  "COLLADA: use the file's camera, not the homework framing");
+  add_color_options(render, o.color);
+  render.add_option("--exr-type", o.exr_options.pixel_type, "EXR pixel type: half or float");
+  render.add_option("--exr-compression", o.exr_options.compression,
+                    "EXR compression: zip, piz, dwaa or none");
+  render.footer(render_footer());
+}
+
+void add_info_options(CLI::App& info, InfoOptions& o) {
+  info.add_option("scene", o.scene, "scene file (.dae or .json)")->required();
+  info.add_option("--accel", o.accelerators, "accelerators to build (default: all)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  info.add_option("--set", o.set, "component parameter key=value")->allow_extra_args(false);
+  info.add_option("-t,--threads", o.threads, "worker threads; 0 = all (default)");
+  info.add_flag("--literal-camera", o.literal_camera,
+                "COLLADA: use the file's camera, not the homework framing");
+}
+
+/// One line, whatever CLI11 put in its message.
+void print_usage_error(const std::string& message, const std::string& help_hint) {
+  std::string line = message;
+  std::replace(line.begin(), line.end(), '\n', ' ');
+  std::fprintf(stderr, "prism: error: %s; see '%s'\n", line.c_str(), help_hint.c_str());
+}
+
+}  // namespace
+
+int run_cli(int argc, const char* const* argv) {
+  CLI::App app{"prism: a CPU path tracer with a BVH and an Embree backend", "prism"};
+  app.set_version_flag("--version", std::string("prism ") + PRISM_VERSION);
+  app.require_subcommand(0, 1);
+  app.footer("Run `prism COMMAND --help` for a command's options.");
+
+  RenderOptions render_options;
+  CLI::App* render = app.add_subcommand("render", "render a scene to EXR and/or PNG (default)");
+  add_render_options(*render, render_options);
+
+  InfoOptions info_options;
+  CLI::App* info = app.add_subcommand(
+      "info", "scene contents, camera, settings and each accelerator's build statistics");
+  add_info_options(*info, info_options);
+
+  CLI::App* list = app.add_subcommand(
+      "list", "accelerators, integrators, scene formats, generated meshes, output formats");
+
+  std::string ocio_config;
+  CLI::App* colorspaces =
+      app.add_subcommand("colorspaces", "colour spaces, displays, views and looks of a config");
+  colorspaces->add_option("--ocio-config", ocio_config,
+                          "OpenColorIO config file (default: $OCIO, else the bundled config)");
+
+  std::vector<std::string> args = arguments_with_default_command(argc, argv);
+  if (args.empty()) {
+    std::fputs(app.help().c_str(), stdout);
+    return kExitSuccess;
+  }
+  try {
+    std::reverse(args.begin(), args.end());  // CLI11 consumes the vector from its back
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed on stdout
+    std::string hint = "prism --help";
+    for (const CLI::App* command : app.get_subcommands()) {
+      hint = "prism " + command->get_name() + " --help";
+    }
+    print_usage_error(e.what(), hint);
+    return kExitBadInput;
+  }
+
+  if (render->parsed()) {
+    render_options.command_line = quote_command_line(argc, argv);
+    return run_render_command(render_options);
+  }
+  if (info->parsed()) return run_info_command(info_options);
+  if (list->parsed()) return run_list_command();
+  if (colorspaces->parsed()) return run_colorspaces_command(ocio_config);
+  std::fputs(app.help().c_str(), stdout);
+  return kExitSuccess;
+}
+
+}  // namespace prism

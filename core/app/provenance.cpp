@@ -1,0 +1,47 @@
+#include "core/app/provenance.h"
+
+#include <fmt/format.h>
+
+namespace prism {
+
+ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& params,
+                              const RenderRecord& record) {
+  return {
+      {"prism:version", PRISM_VERSION},
+      {"prism:scene", record.scene},
+      {"prism:accelerator", settings.accelerator},
+      {"prism:integrator", settings.integrator},
+      {"prism:sampler", settings.sampler},
+      {"prism:spp", std::to_string(settings.spp)},
+      {"prism:light_samples", std::to_string(settings.light_samples)},
+      {"prism:max_depth", std::to_string(settings.max_depth)},
+      {"prism:seed", std::to_string(settings.seed)},
+      {"prism:resolution", fmt::format("{}x{}", settings.width, settings.height)},
+      {"prism:build_ms", fmt::format("{:.3f}", record.build_ms)},
+      {"prism:render_ms", fmt::format("{:.3f}", record.render_ms)},
+      {"prism:command_line", record.command_line},
+      {"prism:params", params.to_string()},
+      {"prism:non_finite_samples", std::to_string(record.non_finite_samples)},
+  };
+}
+
+std::string quote_command_line(int argc, const char* const* argv) {
+  std::string out;
+  for (int i = 0; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (!out.empty()) out += ' ';
+    const bool plain =
+        !arg.empty() && arg.find_first_of(" \t\n'\"\\$`*?;&|<>()") == std::string::npos;
+    if (plain) {
+      out += arg;
+      continue;
+    }
+    // Single quotes protect everything except a single quote, which is closed, escaped, reopened.
+    out += '\'';
+    for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    out += '\'';
+  }
+  return out;
+}
+
+}  // namespace prism

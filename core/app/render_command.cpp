@@ -1,0 +1,126 @@
+// The render driver: one top-down function from options to files, in the order the work happens.
+
+#include <fmt/format.h>
+
+#include <cstdio>
+
+#include "accel/accelerator.h"
+#include "color/color_pipeline.h"
+#include "color/image_output.h"
+#include "core/app/commands.h"
+#include "core/app/component_params.h"
+#include "core/app/provenance.h"
+#include "core/app/timing.h"
+#include "core/film.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "core/samplers.h"
+#include "integrators/integrator.h"
+#include "scenes/scene_loader.h"
+
+namespace prism {
+namespace {
+
+/// The scene's camera with the lens flags applied, fitted to the image's aspect ratio.
+Camera render_camera(const Scene& scene, const RenderOptions& options,
+                     const RenderSettings& settings) {
+  Camera camera = scene.camera;
+  if (options.lens_radius) camera.lens_radius = *options.lens_radius;
+  if (options.focal_distance) camera.focal_distance = *options.focal_distance;
+  camera.fit_to_aspect(float(settings.width) / float(settings.height));
+  camera.validate();
+  return camera;
+}
+
+void write_outputs(const std::vector<OutputFile>& outputs, const Image& image,
+                   const ImageMetadata& metadata, const ColorPipeline& pipeline,
+                   const ExrOptions& exr_options) {
+  for (const auto& output : outputs) {
+    if (output.exr) {
+      write_exr(output.path, image, metadata, pipeline, exr_options);
+    } else {
+      write_display_image(output.path, image, metadata, pipeline);
+    }
+  }
+}
+
+std::string summary_line(const std::filesystem::path& scene, const RenderSettings& settings,
+                         const RenderRecord& record) {
+  const double samples = double(settings.width) * settings.height * settings.spp;
+  const double per_second = record.render_ms > 0.0 ? samples / (record.render_ms * 1e-3) : 0.0;
+  std::string files;
+  for (const auto& o : settings.outputs) files += (files.empty() ? "" : ", ") + o.path.string();
+  return fmt::format(
+      "{}: {} build {:.4g} ms, {} render {}x{} at {} spp {:.4g} ms ({:.3g} Msamples/s) -> {}",
+      scene.filename().string(), settings.accelerator, record.build_ms, settings.integrator,
+      settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6, files);
+}
+
+}  // namespace
+
+int run_render_command(const RenderOptions& options) {
+  // Every check that needs no file comes first, so that a typo costs nothing.
+  validate_render_options(options);
+  ParamSet params = parse_param_assignments(options.set);
+  ThreadLimit thread_limit(options.threads);
+  const std::unique_ptr<Accelerator> accel =
+      accelerator_registry().create(options.accelerator, params);
+
+  const std::filesystem::path scene_path = render_scene_path(options);
+  Scene scene = load_scene(scene_path, SceneLoadOptions{.literal_camera = options.literal_camera});
+  const RenderSettings settings = resolve_render_settings(options, scene);
+
+  const ColorPipeline pipeline(options.color);
+  pipeline.convert_scene_to_working(scene, pipeline.scene_file_space());
+
+  // Fail on an unwritable output now rather than after a long render.
+  for (const auto& output : settings.outputs) check_output_writable(output.path);
+
+  // Every component exists before the (possibly long) build, so mistyped names and --set keys
+  // fail fast.
+  const std::unique_ptr<Integrator> integrator =
+      integrator_registry().create(settings.integrator, params);
+  const std::unique_ptr<Sampler> sampler = create_sampler(settings.sampler, settings.seed);
+  sampler->set_sample_count(settings.spp);
+  check_component_params(
+      params, {{"accelerator", settings.accelerator}, {"integrator", settings.integrator}});
+  const Camera camera = render_camera(scene, options, settings);
+
+  RenderRecord record;
+  record.scene = scene_path.string();
+  record.command_line = options.command_line;
+  record.build_ms = time_ms([&] { accel->build(scene.geometry); });
+
+  Film film(settings.width, settings.height);
+  ProgressReporter progress(
+      "rendering", integrator->progress_total(settings.width, settings.height, settings.spp),
+      options.quiet);
+  const RenderContext context{
+      .scene = scene,
+      .accel = *accel,
+      .camera = camera,
+      .sampler_prototype = *sampler,
+      .spp = settings.spp,
+      .light_samples = settings.light_samples,
+      .max_depth = settings.max_depth,
+      .hemisphere_sampling = settings.hemisphere_sampling,
+      .adaptive_batch = settings.adaptive_batch,
+      .adaptive_tolerance = settings.adaptive_tolerance,
+      .progress = &progress,
+  };
+  record.render_ms = time_ms([&] { integrator->render(context, film); });
+  progress.done();
+  record.non_finite_samples = film.non_finite_samples();
+  if (record.non_finite_samples > 0) {
+    std::fprintf(stderr, "prism: warning: %llu NaN or infinite samples counted as zero\n",
+                 static_cast<unsigned long long>(record.non_finite_samples));
+  }
+
+  const Image image = film.resolve();
+  write_outputs(settings.outputs, image, make_provenance(settings, params, record), pipeline,
+                options.exr_options);
+  std::printf("%s\n", summary_line(scene_path, settings, record).c_str());
+  return kExitSuccess;
+}
+
+}  // namespace prism

@@ -1,0 +1,118 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "color/color_pipeline.h"
+#include "color/image_output.h"
+#include "core/param_set.h"
+#include "core/scene.h"
+
+namespace prism {
+
+inline constexpr const char* kDefaultAccelerator = "bvh";
+/// Stratified low-discrepancy points converge faster than independent ones at the same spp.
+inline constexpr const char* kDefaultSampler = "sobol";
+/// Used when neither --integrator nor the scene file names one.
+inline constexpr const char* kDefaultIntegrator = "path";
+/// The homework's image size, used when neither -r nor the scene file gives one.
+inline constexpr int kDefaultWidth = 480;
+inline constexpr int kDefaultHeight = 360;
+inline constexpr int kDefaultSpp = 16;
+inline constexpr int kDefaultLightSamples = 1;
+inline constexpr int kDefaultMaxDepth = 5;
+inline constexpr uint64_t kDefaultSeed = 0;
+
+/// Bounds on option values: large enough for any real render, small enough that counters cannot
+/// overflow and a typo cannot ask for a film (with its AOVs and the images written from it, over
+/// 100 bytes per pixel) that exhausts memory.
+inline constexpr int kMaxResolution = 16384;
+inline constexpr long long kMaxPixels = 1LL << 25;  // 8K UHD (7680 x 4320) fits
+inline constexpr int kMaxSpp = 1 << 20;
+inline constexpr int kMaxLightSamples = 1 << 16;
+inline constexpr int kMaxDepth = 1024;
+inline constexpr int kMaxThreads = 4096;
+
+/// What the user typed for `prism render`. Unset optionals fall back to the scene file's
+/// settings, then to the defaults above. Plain data filled by the command-line parser.
+struct RenderOptions {
+  std::string scene;  ///< empty: default_scene_path()
+  std::string accelerator = kDefaultAccelerator;
+  std::optional<std::string> integrator;
+  std::string sampler = kDefaultSampler;
+  std::optional<int> spp;
+  std::optional<int> light_samples;
+  std::optional<int> max_depth;
+  std::optional<std::pair<int, int>> resolution;  ///< width, height
+  /// Kept as text: CLI11 would read "-1" as 2^64 - 1 for an unsigned type.
+  std::optional<std::string> seed;
+  int threads = 0;                                 ///< 0: all hardware threads
+  std::optional<std::pair<int, double>> adaptive;  ///< batch size, tolerance (-a)
+  bool hemisphere_sampling = false;                ///< -H
+  std::optional<float> lens_radius;                ///< -b
+  std::optional<float> focal_distance;             ///< -d
+  std::string environment_map;                     ///< -e (not supported yet)
+  std::string camera_file;                         ///< -c (not supported yet)
+  std::string output;                              ///< empty: <scene stem>.exr here
+  bool png = false;                                ///< also write <output stem>.png
+  bool exr = false;  ///< also write <output stem>.exr when the output is a display image
+  bool quiet = false;
+  bool literal_camera = false;
+  std::vector<std::string> set;  ///< --set key=value, in order
+  ColorOptions color;
+  ExrOptions exr_options;
+  std::string command_line;  ///< for provenance metadata
+};
+
+/// One file the render writes.
+struct OutputFile {
+  std::filesystem::path path;
+  bool exr = false;  ///< scene-linear EXR; otherwise a display-referred 8-bit image
+};
+
+/// Every setting of one render after flags, scene settings and defaults have been merged and
+/// checked.
+struct RenderSettings {
+  std::string accelerator;
+  std::string integrator;
+  std::string sampler;
+  int width = kDefaultWidth;
+  int height = kDefaultHeight;
+  int spp = kDefaultSpp;
+  int light_samples = kDefaultLightSamples;
+  int max_depth = kDefaultMaxDepth;
+  uint64_t seed = kDefaultSeed;
+  int adaptive_batch = 0;  ///< 0: adaptive sampling off
+  float adaptive_tolerance = 0.05f;
+  bool hemisphere_sampling = false;
+  std::vector<OutputFile> outputs;  ///< at least one
+};
+
+/// Checks every option value that does not depend on the scene: ranges, finite numbers, EXR
+/// encoding names, output extension, features not supported yet (--set is checked by
+/// parse_param_assignments()). Throws Error(kUsage) naming the option. Call before any work.
+void validate_render_options(const RenderOptions& options);
+
+/// Throws Error(kUsage) naming --threads unless 0 <= threads <= kMaxThreads.
+void validate_thread_count(int threads);
+
+/// The scene file the render loads: --scene, else default_scene_path().
+std::filesystem::path render_scene_path(const RenderOptions& options);
+
+/// Merges `options` (already validated) over the scene's settings over the defaults. Throws
+/// Error(kInput) naming the scene file when one of its settings is out of range.
+RenderSettings resolve_render_settings(const RenderOptions& options, const Scene& scene);
+
+/// The files to write: the output path (default "<scene stem>.exr" in the current folder), plus a
+/// PNG beside an EXR with --png, plus an EXR beside a display image with --exr.
+std::vector<OutputFile> plan_outputs(const RenderOptions& options,
+                                     const std::filesystem::path& scene_path);
+
+/// The --set assignments as a ParamSet; throws Error(kUsage) on a malformed one.
+ParamSet parse_param_assignments(const std::vector<std::string>& assignments);
+
+}  // namespace prism
