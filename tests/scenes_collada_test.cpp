@@ -1,0 +1,762 @@
+// Tests of the CS184 COLLADA loader: every shared file against counts taken from the XML
+// independently (pugixml here, not the loader's code), the Cornell floor's normals, the area
+// light / emissive quad duplicate, a synthetic file exercising every feature, and one test per
+// class of bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <pugixml.hpp>
+
+#include "core/error.h"
+#include "scenes/collada_loader.h"
+#include "scenes/scene_loader.h"
+#include "tests/test_support.h"
+
+namespace prism {
+namespace {
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Replaces the first `from` in `text` (which must be there, so a test cannot silently test the
+// unmodified document).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test document lacks: " << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// 1-based line of the first occurrence of `needle` in `text`.
+int line_of(const std::string& text, const std::string& needle) {
+  const size_t at = text.find(needle);
+  EXPECT_NE(at, std::string::npos) << needle;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+Scene load_text(const std::string& text, const SceneLoadOptions& options = {}) {
+  const auto dir = test::make_temp_dir("collada");
+  const auto path = dir / "scene.dae";
+  test::write_text(path, text);
+  return load_scene(path, options);
+}
+
+// Loads `text`, expects Error(kInput) whose one-line message contains every `needle`, and
+// returns its location line.
+int expect_input_error(const std::string& text, const std::vector<std::string>& needles) {
+  try {
+    load_text(text);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kInput) << e.what();
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
+    for (const auto& needle : needles) {
+      EXPECT_NE(what.find(needle), std::string::npos) << "'" << needle << "' not in: " << what;
+    }
+    return e.location().line;
+  }
+  ADD_FAILURE() << "no error for the document";
+  return -1;
+}
+
+// One triangle bound to a lambert material; every piece on its own line so tests can edit it.
+constexpr const char* kBase = R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<asset>
+<up_axis>Z_UP</up_axis>
+</asset>
+<library_effects>
+<effect id="red-effect"><profile_COMMON><technique sid="common"><lambert><diffuse><color>0.8 0.1 0.1 1</color></diffuse></lambert></technique></profile_COMMON></effect>
+</library_effects>
+<library_materials>
+<material id="red" name="red"><instance_effect url="#red-effect"/></material>
+</library_materials>
+<library_geometries>
+<geometry id="tri">
+<mesh>
+<source id="tri-pos">
+<float_array id="tri-pos-array" count="9">0 0 0 1 0 0 0 1 0</float_array>
+<technique_common><accessor source="#tri-pos-array" count="3" stride="3"/></technique_common>
+</source>
+<vertices id="tri-vtx"><input semantic="POSITION" source="#tri-pos"/></vertices>
+<polylist material="mat" count="1">
+<input semantic="VERTEX" source="#tri-vtx" offset="0"/>
+<vcount>3</vcount>
+<p>0 1 2</p>
+</polylist>
+</mesh>
+</geometry>
+<geometry id="ball"><extra><technique profile="CGL"><sphere><radius>0.5</radius></sphere></technique></extra></geometry>
+</library_geometries>
+<library_visual_scenes>
+<visual_scene id="Scene">
+<node id="n">
+<instance_geometry url="#tri"><bind_material><technique_common><instance_material symbol="mat" target="#red"/></technique_common></bind_material></instance_geometry>
+</node>
+<node id="s"><translate>0 0 2</translate><instance_geometry url="#ball"/></node>
+</visual_scene>
+</library_visual_scenes>
+<scene><instance_visual_scene url="#Scene"/></scene>
+</COLLADA>
+)";
+
+TEST(ColladaLoader, BaseDocumentLoads) {
+  const Scene scene = load_text(kBase);
+  ASSERT_EQ(scene.geometry.meshes.size(), 1u);
+  EXPECT_EQ(scene.geometry.meshes[0].name, "n/tri/mat");
+  EXPECT_EQ(scene.geometry.triangle_count(), 1u);
+  ASSERT_EQ(scene.geometry.spheres.size(), 1u);
+  EXPECT_EQ(scene.geometry.spheres[0].center, Vec3(0, 0, 2));
+  EXPECT_FLOAT_EQ(scene.geometry.spheres[0].radius, 0.5f);
+  ASSERT_EQ(scene.materials.size(), 2u);  // red + the default grey of the unbound sphere
+  const Material& red = scene.materials[scene.geometry.meshes[0].material_id];
+  EXPECT_EQ(red.type, MaterialType::kDiffuse);
+  EXPECT_EQ(red.reflectance, Rgb(0.8f, 0.1f, 0.1f));
+  const Material& grey = scene.materials[scene.geometry.spheres[0].material_id];
+  EXPECT_EQ(grey.reflectance, Rgb(0.5f));
+  EXPECT_EQ(scene.settings.width, 480);
+  EXPECT_EQ(scene.settings.height, 360);
+}
+
+// ---- Every shared CS184 file, checked against counts read from its XML here. ----
+
+struct XmlCounts {
+  size_t triangles = 0, spheres = 0;
+  std::map<std::string, int> lights;     // by type
+  std::map<std::string, int> materials;  // by type, distinct bound materials (+ default)
+};
+
+pugi::xml_node by_id(const pugi::xml_document& doc, const char* url) {
+  const std::string id = std::string(url).substr(1);
+  return doc.find_node([&](pugi::xml_node n) { return id == n.attribute("id").value(); });
+}
+
+XmlCounts count_from_xml(const std::filesystem::path& path) {
+  pugi::xml_document doc;
+  EXPECT_TRUE(doc.load_file(path.c_str()));
+  XmlCounts counts;
+  std::set<std::string> bound;
+  bool uses_default = false;
+  const auto visual = by_id(
+      doc,
+      doc.child("COLLADA").child("scene").child("instance_visual_scene").attribute("url").value());
+  for (const pugi::xpath_node& x : visual.select_nodes(".//instance_geometry")) {
+    const pugi::xml_node instance = x.node();
+    const pugi::xml_node geometry = by_id(doc, instance.attribute("url").value());
+    const auto targets = instance.select_nodes(".//instance_material");
+    for (const auto& t : targets) bound.insert(t.node().attribute("target").value());
+    if (!geometry.child("mesh")) {
+      ++counts.spheres;
+      uses_default |= targets.empty();
+      continue;
+    }
+    for (pugi::xml_node group : geometry.child("mesh").children()) {
+      if (std::string(group.name()) != "polylist") continue;
+      std::istringstream vcount(group.child_value("vcount"));
+      for (int n; vcount >> n;) counts.triangles += n - 2;
+      uses_default |= !group.attribute("material");
+    }
+  }
+  for (const pugi::xpath_node& x : visual.select_nodes(".//instance_light")) {
+    const pugi::xml_node light = by_id(doc, x.node().attribute("url").value());
+    const pugi::xml_node cgl = light.select_node("extra/technique[@profile='CGL']/*").node();
+    ++counts.lights[cgl ? cgl.name() : light.child("technique_common").first_child().name()];
+  }
+  for (const std::string& target : bound) {
+    const pugi::xml_node material = by_id(doc, target.c_str());
+    const pugi::xml_node effect =
+        by_id(doc, material.child("instance_effect").attribute("url").value());
+    const pugi::xml_node cgl = effect.select_node("extra/technique[@profile='CGL']/*").node();
+    ++counts.materials[cgl ? cgl.name() : "diffuse"];
+  }
+  if (uses_default) ++counts.materials["diffuse"];
+  return counts;
+}
+
+TEST(ColladaLoader, EverySharedFileMatchesItsXml) {
+  const auto names = test::cs184_scene_names();
+  if (names.empty()) GTEST_SKIP() << "../shared/scenes/cs184 absent";
+  // Sizes stated in docs/cs184-collada.md (and checked by hand against vcount sums).
+  const std::map<std::string, std::pair<size_t, size_t>> documented = {
+      {"CBempty.dae", {12, 0}},   {"CBspheres_lambertian.dae", {12, 2}},
+      {"CBspheres.dae", {12, 2}}, {"CBbunny.dae", {28588, 0}},
+      {"bunny.dae", {33696, 0}},  {"banana.dae", {2458, 0}},
+      {"cow.dae", {5856, 0}},     {"cube.dae", {12, 0}}};
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    const auto path = *test::cs184_scene(name);
+    const Scene scene = load_scene(path);
+    const XmlCounts xml = count_from_xml(path);
+    EXPECT_EQ(scene.geometry.triangle_count(), xml.triangles);
+    EXPECT_EQ(scene.geometry.spheres.size(), xml.spheres);
+    if (const auto it = documented.find(name); it != documented.end()) {
+      EXPECT_EQ(scene.geometry.triangle_count(), it->second.first);
+      EXPECT_EQ(scene.geometry.spheres.size(), it->second.second);
+    }
+    std::map<std::string, int> lights, materials;
+    for (const Light& l : scene.lights) ++lights[std::string(to_string(l.type))];
+    for (const Material& m : scene.materials) ++materials[std::string(to_string(m.type))];
+    EXPECT_EQ(lights, xml.lights);
+    EXPECT_EQ(materials, xml.materials);
+    for (const TriangleMesh& mesh : scene.geometry.meshes) {
+      for (const Vec3& n : mesh.normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-5f) << mesh.name;
+    }
+    for (const Light& l : scene.lights) EXPECT_EQ(l.up, Vec3(0, 0, 1));
+    EXPECT_EQ(scene.camera.up, Vec3(0, 0, 1));
+  }
+}
+
+// The Cornell floor winds downward while its normals point up into the box; the loader keeps
+// both, and the shared surface_at turns the geometric normal to the shading side.
+TEST(ColladaLoader, CornellFloorNormalsVersusWinding) {
+  PRISM_REQUIRE_CS184(path, "CBempty.dae");
+  const Scene scene = load_scene(path);
+  const auto& meshes = scene.geometry.meshes;
+  const auto floor = std::find_if(meshes.begin(), meshes.end(), [](const TriangleMesh& m) {
+    return m.name.rfind("floor/", 0) == 0;
+  });
+  ASSERT_NE(floor, meshes.end());
+  ASSERT_EQ(floor->triangles.size(), 2u);
+  for (const Vec3& n : floor->normals) EXPECT_NEAR(n.z, 1.0f, 1e-5f);
+  const auto geom_id = static_cast<uint32_t>(floor - meshes.begin());
+  for (uint32_t prim = 0; prim < 2; ++prim) {
+    const glm::uvec3 t = floor->triangles[prim];
+    const Vec3 winding = glm::cross(floor->positions[t.y] - floor->positions[t.x],
+                                    floor->positions[t.z] - floor->positions[t.x]);
+    EXPECT_LT(winding.z, 0.0f) << "the file's floor winds downward";
+    const Ray ray{Vec3(0.1f, 0.2f, 1.0f), 0.0f, Vec3(0, 0, -1), kInfinity};
+    const SurfaceInteraction si = scene.surface_at(ray, Hit{1.0f, 0.25f, 0.25f, geom_id, prim});
+    EXPECT_GT(si.geometric_normal.z, 0.99f);
+    EXPECT_GT(si.shading_normal.z, 0.99f);
+  }
+}
+
+// Emitted power (radiance x area x pi) of everything that emits on its own account.
+double emitted_power(const Scene& scene) {
+  double power = 0.0;
+  for (const TriangleMesh& mesh : scene.geometry.meshes) {
+    const Material& m = scene.materials[mesh.material_id];
+    if (!m.is_emissive()) continue;
+    for (const glm::uvec3& t : mesh.triangles) {
+      const double area = 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                                       mesh.positions[t.z] - mesh.positions[t.x]));
+      power += kPi * area * m.radiance.x;
+    }
+  }
+  for (const Light& l : scene.lights) {
+    if (l.type == LightType::kArea && !l.duplicates_emissive_mesh) {
+      power += kPi * glm::length(glm::cross(l.edge_u, l.edge_v)) * l.color.x;
+    }
+  }
+  return power;
+}
+
+TEST(ColladaLoader, AreaLightDuplicatingTheEmissiveQuadIsFlagged) {
+  for (const char* name : {"CBspheres.dae", "CBspheres_lambertian.dae", "CBbunny.dae"}) {
+    SCOPED_TRACE(name);
+    PRISM_REQUIRE_CS184(path, name);
+    const Scene scene = load_scene(path);
+    ASSERT_EQ(scene.lights.size(), 1u);
+    const Light& area = scene.lights[0];
+    EXPECT_EQ(area.type, LightType::kArea);
+    EXPECT_TRUE(area.duplicates_emissive_mesh);
+    EXPECT_NEAR(glm::length(area.edge_u), 0.6f, 1e-6f);
+    EXPECT_NEAR(glm::length(area.edge_v), 0.8f, 1e-6f);
+    EXPECT_NEAR(area.position.z, 1.49f, 1e-6f);
+    EXPECT_NEAR(area.direction.z, -1.0f, 1e-6f);
+    // Energy is not doubled: the same as the file with the area light removed, and the same as
+    // the file with the emissive quad removed (then the area light is the only emitter).
+    const std::string text = read_file(path);
+    const Scene without_light =
+        load_text(replaced(text, "<instance_light url=\"#Area-light\"/>", ""));
+    EXPECT_TRUE(without_light.lights.empty());
+    // The quad stays but turns into a plain wall: bound to the ceiling's diffuse material.
+    const Scene without_quad =
+        load_text(replaced(text, "target=\"#light-material\"", "target=\"#ceiling-material\""));
+    ASSERT_EQ(without_quad.lights.size(), 1u);
+    EXPECT_FALSE(without_quad.lights[0].duplicates_emissive_mesh);
+    EXPECT_NEAR(emitted_power(scene), kPi * 0.48 * 10.0, 1e-3);
+    EXPECT_NEAR(emitted_power(without_light), emitted_power(scene), 1e-3);
+    EXPECT_NEAR(emitted_power(without_quad), emitted_power(scene), 1e-3);
+  }
+}
+
+// CBempty lights its box with a point light (no CGL area light) besides the emissive quad:
+// nothing there is an area light, so nothing may be flagged.
+TEST(ColladaLoader, CBemptyHasAPointLightAndTheEmissiveQuad) {
+  PRISM_REQUIRE_CS184(path, "CBempty.dae");
+  const Scene scene = load_scene(path);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].type, LightType::kPoint);
+  EXPECT_FALSE(scene.lights[0].duplicates_emissive_mesh);
+  EXPECT_EQ(scene.lights[0].color, Rgb(5.0f));
+  EXPECT_NEAR(emitted_power(scene), kPi * 0.48 * 10.0, 1e-3);
+}
+
+TEST(ColladaLoader, AreaLightAwayFromTheQuadIsNotADuplicate) {
+  PRISM_REQUIRE_CS184(path, "CBspheres.dae");
+  const std::string text = read_file(path);
+  const std::string node = "<matrix sid=\"transform\">0.6 0 0 0 0 0.8 0 0 0 0 1 1.49";
+  const Scene moved =
+      load_text(replaced(text, node, "<matrix sid=\"transform\">0.6 0 0 0.3 0 0.8 0 0 0 0 1 1.49"));
+  EXPECT_FALSE(moved.lights[0].duplicates_emissive_mesh);
+  const Scene bigger =
+      load_text(replaced(text, node, "<matrix sid=\"transform\">0.7 0 0 0 0 0.8 0 0 0 0 1 1.49"));
+  EXPECT_FALSE(bigger.lights[0].duplicates_emissive_mesh);
+}
+
+// ---- A synthetic file exercising every feature. ----
+
+constexpr const char* kFeatures = R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<asset><up_axis>Y_UP</up_axis></asset>
+<library_cameras>
+<camera id="cam"><optics><technique_common><perspective><yfov>30</yfov><aspect_ratio>2</aspect_ratio><znear>0.5</znear><zfar>50</zfar></perspective></technique_common></optics></camera>
+</library_cameras>
+<library_lights>
+<light id="spot"><technique_common><spot><color>1 2 3</color><constant_attenuation>1</constant_attenuation><linear_attenuation>0.5</linear_attenuation><quadratic_attenuation>0.25</quadratic_attenuation><falloff_angle>40</falloff_angle><falloff_exponent>2</falloff_exponent></spot></technique_common></light>
+<light id="point"><technique_common><point><color>4 4 4</color></point></technique_common></light>
+<light id="sun"><technique_common><directional><color>0.5 0.5 0.5</color></directional></technique_common></light>
+<light id="sky"><technique_common><ambient><color>0.1 0.2 0.3</color></ambient></technique_common></light>
+</library_lights>
+<library_effects>
+<effect id="e-emission"><extra><technique profile="CGL"><emission><radiance>7 8 9</radiance></emission></technique></extra></effect>
+<effect id="e-mirror"><extra><technique profile="CGL"><mirror><reflectance>0.9 0.8 0.7</reflectance></mirror></technique></extra></effect>
+<effect id="e-glass"><extra><technique profile="CGL"><glass><reflectance>1 1 1</reflectance><transmittance>0.5 0.6 0.7</transmittance><roughness>0</roughness><ior>1.45</ior></glass></technique></extra></effect>
+<effect id="e-refraction"><extra><technique profile="CGL"><refraction><transmittance>0.3 0.3 0.3</transmittance><roughness>0.1</roughness><ior>1.33</ior></refraction></technique></extra></effect>
+<effect id="e-microfacet"><extra><technique profile="CGL"><microfacet><alpha>0.25</alpha><eta>0.2 0.9 1.1</eta><k>3.9 2.4 2.2</k></microfacet></technique></extra></effect>
+<effect id="e-phong"><profile_COMMON><technique sid="common"><phong><diffuse><color>0.1 0.2 0.3 1</color></diffuse></phong></technique></profile_COMMON></effect>
+<effect id="e-textured"><profile_COMMON><technique sid="common"><phong><diffuse><texture texture="img" texcoord="uv"/></diffuse></phong></technique></profile_COMMON></effect>
+</library_effects>
+<library_materials>
+<material id="m-emission"><instance_effect url="#e-emission"/></material>
+<material id="m-mirror"><instance_effect url="#e-mirror"/></material>
+<material id="m-glass"><instance_effect url="#e-glass"/></material>
+<material id="m-refraction"><instance_effect url="#e-refraction"/></material>
+<material id="m-microfacet"><instance_effect url="#e-microfacet"/></material>
+<material id="m-phong"><instance_effect url="#e-phong"/></material>
+<material id="m-textured"><instance_effect url="#e-textured"/></material>
+</library_materials>
+<library_geometries>
+<geometry id="quad"><mesh>
+<source id="quad-pos"><float_array id="quad-pos-a" count="12">0 0 0 1 0 0 1 1 0 0 1 0</float_array><technique_common><accessor source="#quad-pos-a" count="4" stride="3"/></technique_common></source>
+<source id="quad-n"><float_array id="quad-n-a" count="3">0 0 1</float_array><technique_common><accessor source="#quad-n-a" count="1" stride="3"/></technique_common></source>
+<source id="quad-uv"><float_array id="quad-uv-a" count="8">0 0 1 0 1 1 0 1</float_array><technique_common><accessor source="#quad-uv-a" count="4" stride="2"/></technique_common></source>
+<vertices id="quad-v"><input semantic="POSITION" source="#quad-pos"/></vertices>
+<polylist material="q" count="1">
+<input semantic="VERTEX" source="#quad-v" offset="0"/>
+<input semantic="TEXCOORD" source="#quad-uv" offset="2" set="0"/>
+<input semantic="NORMAL" source="#quad-n" offset="1"/>
+<vcount>4</vcount>
+<p>0 0 3  1 0 2  2 0 1  3 0 0</p>
+</polylist>
+</mesh></geometry>
+<geometry id="tri"><mesh>
+<source id="tri-pos"><float_array id="tri-pos-a" count="9">0 0 0 1 0 0 0 0 -1</float_array><technique_common><accessor source="#tri-pos-a" count="3" stride="3"/></technique_common></source>
+<vertices id="tri-v"><input semantic="POSITION" source="#tri-pos"/></vertices>
+<triangles material="m" count="1"><input semantic="VERTEX" source="#tri-v" offset="0"/><p>0 1 2</p></triangles>
+</mesh></geometry>
+</library_geometries>
+<library_visual_scenes>
+<visual_scene id="Scene">
+<node id="parent"><translate>1 2 3</translate><rotate>0 0 1 90</rotate>
+<node id="child"><matrix>1 0 0 10 0 1 0 0 0 0 1 0 0 0 0 1</matrix><scale>2 2 2</scale>
+<instance_geometry url="#quad"><bind_material><technique_common><instance_material symbol="q" target="#m-phong"/></technique_common></bind_material></instance_geometry>
+</node>
+</node>
+<node id="mirrored"><scale>-1 1 1</scale><instance_geometry url="#quad"><bind_material><technique_common><instance_material symbol="q" target="#m-phong"/></technique_common></bind_material></instance_geometry></node>
+<node id="spot-node"><translate>0 5 0</translate><rotate>1 0 0 -90</rotate><instance_light url="#spot"/></node>
+<node id="point-node"><translate>1 2 3</translate><instance_light url="#point"/></node>
+<node id="sun-node"><instance_light url="#sun"/></node>
+<node id="sky-node"><instance_light url="#sky"/></node>
+<node id="cam-node"><translate>0 3 10</translate><instance_camera url="#cam"/></node>
+MATERIAL_NODES
+</visual_scene>
+</library_visual_scenes>
+<scene><instance_visual_scene url="#Scene"/></scene>
+</COLLADA>
+)";
+
+constexpr std::array<const char*, 7> kMaterialKinds = {
+    "emission", "mirror", "glass", "refraction", "microfacet", "phong", "textured"};
+
+std::string features_document() {
+  std::string nodes;
+  for (const std::string kind : kMaterialKinds) {
+    nodes += "<node id=\"with-" + kind + "\"><translate>0 -1 0</translate>";
+    nodes += "<instance_geometry url=\"#tri\"><bind_material><technique_common>";
+    nodes += "<instance_material symbol=\"m\" target=\"#m-" + kind + "\"/>";
+    nodes += "</technique_common></bind_material></instance_geometry></node>\n";
+  }
+  return replaced(kFeatures, "MATERIAL_NODES\n", nodes);
+}
+
+void expect_near(const Vec3& actual, const Vec3& expected, float tolerance = 1e-5f) {
+  EXPECT_NEAR(actual.x, expected.x, tolerance)
+      << "actual " << actual.x << " " << actual.y << " " << actual.z;
+  EXPECT_NEAR(actual.y, expected.y, tolerance)
+      << "actual " << actual.x << " " << actual.y << " " << actual.z;
+  EXPECT_NEAR(actual.z, expected.z, tolerance)
+      << "actual " << actual.x << " " << actual.y << " " << actual.z;
+}
+
+const TriangleMesh& mesh_named(const Scene& scene, const std::string& name) {
+  for (const TriangleMesh& m : scene.geometry.meshes) {
+    if (m.name == name) return m;
+  }
+  ADD_FAILURE() << "no mesh " << name;
+  static const TriangleMesh none;
+  return none;
+}
+
+TEST(ColladaLoader, SyntheticNodesTransformsAndFanTriangulation) {
+  const Scene scene = load_text(features_document());
+  const TriangleMesh& quad = mesh_named(scene, "child/quad/q");
+  // By hand: p -> scale 2 -> matrix (+10 x) -> rotate 90 about z -> translate (1,2,3), in the
+  // Y-up file frame: (1 - 2y, 2x + 12, 2z + 3); then Y_UP -> Z-up maps (x, y, z) to (x, -z, y).
+  ASSERT_EQ(quad.positions.size(), 4u);
+  expect_near(quad.positions[0], {1, -3, 12});
+  expect_near(quad.positions[1], {1, -3, 14});
+  expect_near(quad.positions[2], {-1, -3, 14});
+  expect_near(quad.positions[3], {-1, -3, 12});
+  ASSERT_EQ(quad.triangles.size(), 2u);  // the quad as a fan around its first corner
+  EXPECT_EQ(quad.triangles[0], glm::uvec3(0, 1, 2));
+  EXPECT_EQ(quad.triangles[1], glm::uvec3(0, 2, 3));
+  ASSERT_EQ(quad.normals.size(), 6u);
+  for (const Vec3& n : quad.normals) expect_near(n, {0, -1, 0});
+  // Texture coordinates follow their own offset in <p> (reversed against the vertices here).
+  const std::vector<Vec2> uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 1}, {1, 0}, {0, 0}};
+  EXPECT_EQ(quad.uvs, uvs);
+  EXPECT_EQ(scene.materials[quad.material_id].reflectance, Rgb(0.1f, 0.2f, 0.3f));
+
+  // A mirroring scale keeps the winding on the side of the transformed normals.
+  const TriangleMesh& mirrored = mesh_named(scene, "mirrored/quad/q");
+  ASSERT_EQ(mirrored.triangles.size(), 2u);
+  for (size_t t = 0; t < 2; ++t) {
+    const glm::uvec3 tri = mirrored.triangles[t];
+    const Vec3 winding = glm::cross(mirrored.positions[tri.y] - mirrored.positions[tri.x],
+                                    mirrored.positions[tri.z] - mirrored.positions[tri.x]);
+    EXPECT_GT(glm::dot(winding, mirrored.normals[3 * t]), 0.0f);
+  }
+}
+
+TEST(ColladaLoader, SyntheticLightsInTheZUpWorld) {
+  const Scene scene = load_text(features_document());
+  ASSERT_EQ(scene.lights.size(), 4u);
+  const Light& spot = scene.lights[0];
+  EXPECT_EQ(spot.type, LightType::kSpot);
+  expect_near(spot.position, {0, 0, 5});    // 5 above the origin in the Y-up file
+  expect_near(spot.direction, {0, 0, -1});  // rotated to point down
+  EXPECT_EQ(spot.color, Rgb(1, 2, 3));
+  EXPECT_FLOAT_EQ(spot.constant_attenuation, 1.0f);
+  EXPECT_FLOAT_EQ(spot.linear_attenuation, 0.5f);
+  EXPECT_FLOAT_EQ(spot.quadratic_attenuation, 0.25f);
+  EXPECT_FLOAT_EQ(spot.falloff_angle_deg, 40.0f);
+  EXPECT_FLOAT_EQ(spot.falloff_exponent, 2.0f);
+  const Light& point = scene.lights[1];
+  EXPECT_EQ(point.type, LightType::kPoint);
+  expect_near(point.position, {1, -3, 2});
+  EXPECT_FLOAT_EQ(point.constant_attenuation, 1.0f);
+  EXPECT_FLOAT_EQ(point.quadratic_attenuation, 0.0f);
+  const Light& sun = scene.lights[2];
+  EXPECT_EQ(sun.type, LightType::kDirectional);
+  expect_near(sun.direction, {0, 1, 0});  // the file's -Z
+  const Light& sky = scene.lights[3];
+  EXPECT_EQ(sky.type, LightType::kAmbient);
+  EXPECT_EQ(sky.color, Rgb(0.1f, 0.2f, 0.3f));
+  for (const Light& l : scene.lights) EXPECT_EQ(l.up, Vec3(0, 0, 1));
+}
+
+TEST(ColladaLoader, SyntheticMaterialsOfEveryKind) {
+  const Scene scene = load_text(features_document());
+  std::map<std::string, Material> by_kind;
+  for (const std::string kind : kMaterialKinds) {
+    const TriangleMesh& mesh = mesh_named(scene, "with-" + kind + "/tri/m");
+    ASSERT_EQ(mesh.triangle_count(), 1u);  // from <triangles>
+    by_kind[kind] = scene.materials[mesh.material_id];
+  }
+  EXPECT_EQ(by_kind["emission"].type, MaterialType::kEmission);
+  EXPECT_EQ(by_kind["emission"].radiance, Rgb(7, 8, 9));
+  EXPECT_EQ(by_kind["mirror"].type, MaterialType::kMirror);
+  EXPECT_EQ(by_kind["mirror"].reflectance, Rgb(0.9f, 0.8f, 0.7f));
+  EXPECT_EQ(by_kind["glass"].type, MaterialType::kGlass);
+  EXPECT_EQ(by_kind["glass"].transmittance, Rgb(0.5f, 0.6f, 0.7f));
+  EXPECT_FLOAT_EQ(by_kind["glass"].ior, 1.45f);
+  EXPECT_FLOAT_EQ(by_kind["glass"].roughness, 0.0f);
+  EXPECT_EQ(by_kind["refraction"].type, MaterialType::kRefraction);
+  EXPECT_EQ(by_kind["refraction"].transmittance, Rgb(0.3f));
+  EXPECT_FLOAT_EQ(by_kind["refraction"].roughness, 0.1f);
+  EXPECT_FLOAT_EQ(by_kind["refraction"].ior, 1.33f);
+  EXPECT_EQ(by_kind["microfacet"].type, MaterialType::kMicrofacet);
+  EXPECT_FLOAT_EQ(by_kind["microfacet"].alpha, 0.25f);
+  EXPECT_EQ(by_kind["microfacet"].eta, Rgb(0.2f, 0.9f, 1.1f));
+  EXPECT_EQ(by_kind["microfacet"].k, Rgb(3.9f, 2.4f, 2.2f));
+  EXPECT_EQ(by_kind["phong"].type, MaterialType::kDiffuse);
+  EXPECT_EQ(by_kind["phong"].reflectance, Rgb(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(by_kind["textured"].type, MaterialType::kDiffuse);
+  EXPECT_EQ(by_kind["textured"].reflectance, Rgb(0.5f));
+  EXPECT_EQ(scene.materials.size(), kMaterialKinds.size());  // each bound material once
+}
+
+TEST(ColladaLoader, SyntheticCameraUsesYfovAndAspect) {
+  const Scene scene = load_text(features_document());
+  EXPECT_NEAR(scene.camera.vfov_deg, 30.0f, 1e-4f);
+  const double hfov = 2.0 * std::atan(std::tan(15.0 * kPi / 180.0) * 2.0) * 180.0 / kPi;
+  EXPECT_NEAR(scene.camera.hfov_deg, hfov, 1e-4);
+  EXPECT_FLOAT_EQ(scene.camera.znear, 0.5f);
+  // The camera node sits at file (0,3,10): one unit in front is (0,3,9), world (0,-9,3).
+  const Vec3 c = glm::normalize(scene.camera.position - scene.camera.target);
+  expect_near(c, glm::normalize(Vec3(0, -9, 3)));
+  EXPECT_EQ(scene.camera.up, Vec3(0, 0, 1));
+}
+
+// The up axis is a global rotation into prism's Z-up world: reading the same numbers as Y_UP
+// or X_UP gives the Z_UP scene turned so the file's up axis becomes +Z, camera included (the
+// framing's axis-aligned box turns exactly with it).
+TEST(ColladaLoader, UpAxisIsAGlobalRotation) {
+  const std::string y_up = features_document();
+  const Scene as_z = load_text(replaced(y_up, "Y_UP", "Z_UP"));
+  const Scene as_y = load_text(y_up);
+  const Scene as_x = load_text(replaced(y_up, "Y_UP", "X_UP"));
+  const auto y_to_z = [](const Vec3& p) { return Vec3(p.x, -p.z, p.y); };
+  const auto x_to_z = [](const Vec3& p) { return Vec3(-p.z, p.y, p.x); };
+  for (const auto& [scene, rotate] : {std::pair{&as_y, +y_to_z}, std::pair{&as_x, +x_to_z}}) {
+    ASSERT_EQ(scene->geometry.meshes.size(), as_z.geometry.meshes.size());
+    for (size_t m = 0; m < as_z.geometry.meshes.size(); ++m) {
+      const auto& expected = as_z.geometry.meshes[m].positions;
+      const auto& actual = scene->geometry.meshes[m].positions;
+      ASSERT_EQ(actual.size(), expected.size());
+      for (size_t i = 0; i < actual.size(); ++i) expect_near(actual[i], rotate(expected[i]), 1e-4f);
+    }
+    for (size_t l = 0; l < as_z.lights.size(); ++l) {
+      expect_near(scene->lights[l].position, rotate(as_z.lights[l].position), 1e-4f);
+      expect_near(scene->lights[l].direction, rotate(as_z.lights[l].direction), 1e-5f);
+    }
+    expect_near(scene->camera.target, rotate(as_z.camera.target), 1e-4f);
+    expect_near(scene->camera.position, rotate(as_z.camera.position), 1e-4f);
+    EXPECT_EQ(scene->camera.up, Vec3(0, 0, 1));
+  }
+}
+
+TEST(ColladaLoader, FileWithoutCameraIsFramedFromTheFront) {
+  const Scene scene = load_text(kBase);
+  const Bounds3 b = scene.geometry.bounds();
+  expect_near(scene.camera.target, b.center());
+  const float r = 1.5f * glm::length(b.diagonal());
+  expect_near(scene.camera.position, b.center() + Vec3(0, -r, 0), 1e-4f);
+}
+
+TEST(ColladaLoader, LiteralCameraOption) {
+  SceneLoadOptions literal;
+  literal.literal_camera = true;
+  const Scene scene = load_text(features_document(), literal);
+  // File (0,3,10) looking down -Z with +Y up -> world (0,-10,3) looking +Y with +Z up.
+  expect_near(scene.camera.position, {0, -10, 3});
+  expect_near(glm::normalize(scene.camera.target - scene.camera.position), {0, 1, 0});
+  expect_near(scene.camera.up, {0, 0, 1});
+}
+
+// ---- Bad input: one test per class; each names the element or id and gives its line. ----
+
+TEST(ColladaErrors, MalformedXml) {
+  const std::string text = replaced(kBase, "<p>0 1 2</p>", "<p>0 1 2</q>");
+  const int line = expect_input_error(text, {"malformed XML", "mismatch"});
+  EXPECT_EQ(line, line_of(text, "</q>"));
+  EXPECT_GT(expect_input_error("", {"malformed XML"}), 0);
+  expect_input_error("\x01\x02garbage<<>>", {"malformed XML"});
+  EXPECT_EQ(expect_input_error("<?xml version=\"1.0\"?>\n<scene/>\n", {"<scene>", "COLLADA"}), 2);
+}
+
+TEST(ColladaErrors, MissingOrUnknownUpAxis) {
+  const std::string missing = replaced(kBase, "<up_axis>Z_UP</up_axis>\n", "");
+  EXPECT_EQ(expect_input_error(missing, {"<asset>", "up_axis"}), line_of(missing, "<asset>"));
+  const std::string unknown = replaced(kBase, "Z_UP", "W_UP");
+  EXPECT_EQ(expect_input_error(unknown, {"<up_axis>", "'W_UP'"}), line_of(unknown, "W_UP"));
+  // Windows line endings count lines the same way.
+  std::string crlf;
+  for (char c : unknown) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  EXPECT_EQ(expect_input_error(crlf, {"'W_UP'"}), line_of(unknown, "W_UP"));
+}
+
+TEST(ColladaErrors, DanglingReferencesNameTheId) {
+  struct Case {
+    std::string from, to;
+    std::vector<std::string> needles;
+    std::string at;  // text on the line the error must point at
+  };
+  const std::vector<Case> cases = {
+      {"url=\"#tri\"", "url=\"#nope\"", {"'nope'", "<instance_geometry"}, "#nope"},
+      {"target=\"#red\"", "target=\"#ghost\"", {"'ghost'", "<instance_material"}, "#ghost"},
+      {"source=\"#tri-pos\"/>", "source=\"#lost\"/>", {"'lost'", "<input"}, "#lost"},
+      {"source=\"#tri-pos-array\"",
+       "source=\"#no-array\"",
+       {"'no-array'", "<accessor"},
+       "#no-array"},
+      {"url=\"#red-effect\"",
+       "url=\"#no-effect\"",
+       {"'no-effect'", "<instance_effect"},
+       "#no-effect"},
+      {"url=\"#Scene\"", "url=\"#NoScene\"", {"'NoScene'", "<instance_visual_scene"}, "#NoScene"},
+      {"<translate>0 0 2</translate>", "<instance_light url=\"#lamp\"/>", {"'lamp'"}, "#lamp"},
+      {"url=\"#tri\"",
+       "url=\"#red\"",
+       {"'#red' names a <material>, expected <geometry>"},
+       "url=\"#red\""},
+      {"url=\"#tri\"", "url=\"other.dae#tri\"", {"other.dae#tri", "local reference"}, "other.dae"},
+      {"symbol=\"mat\"",
+       "symbol=\"other\"",
+       {"symbol 'mat'", "<polylist material=\"mat\">"},
+       "other"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.to);
+    const std::string text = replaced(kBase, c.from, c.to);
+    EXPECT_EQ(expect_input_error(text, c.needles), line_of(text, c.at));
+  }
+}
+
+TEST(ColladaErrors, WrongCounts) {
+  const std::string wrong = replaced(kBase, "count=\"9\"", "count=\"12\"");
+  EXPECT_EQ(
+      expect_input_error(wrong, {"<float_array id=\"tri-pos-array\">", "count=\"12\"", "holds 9"}),
+      line_of(wrong, "count=\"12\""));
+  // An absurd count is compared with the content, never used to allocate.
+  expect_input_error(replaced(kBase, "count=\"9\"", "count=\"999999999999\""), {"999999999999"});
+  const std::string past = replaced(kBase, "count=\"3\" stride=\"3\"", "count=\"4\" stride=\"3\"");
+  EXPECT_EQ(expect_input_error(past, {"<accessor", "reads past the end", "tri-pos-array"}),
+            line_of(past, "count=\"4\""));
+  expect_input_error(
+      replaced(kBase, "count=\"3\" stride=\"3\"", "count=\"18446744073709551615\" stride=\"3\""),
+      {"reads past the end"});
+  expect_input_error(replaced(kBase, "count=\"3\" stride=\"3\"", "count=\"3\" stride=\"0\""),
+                     {"stride 0 is too small"});
+  expect_input_error(replaced(kBase, "count=\"9\"", "count=\"nine\""),
+                     {"count=\"nine\"", "integer"});
+}
+
+TEST(ColladaErrors, NonNumericAndNonFiniteNumbers) {
+  const std::string array = "0 0 0 1 0 0 0 1 0";
+  for (const std::string bad :
+       {"zero", "nan", "NaN", "inf", "-Infinity", "1e999", "0x1p3", "1,5"}) {
+    SCOPED_TRACE(bad);
+    // The bad token sits on the float_array's second line; the error points there.
+    const std::string text = replaced(kBase, array, "0 0 0 1 0 0\n0 " + bad + " 0");
+    EXPECT_EQ(expect_input_error(text, {"'" + bad + "'", "tri-pos-array"}),
+              line_of(text, "tri-pos-array\"") + 1);
+  }
+  const std::string transform =
+      replaced(kBase, "<translate>0 0 2</translate>", "<translate>0 NaN 2</translate>");
+  EXPECT_EQ(expect_input_error(transform, {"'NaN'", "<translate>"}), line_of(transform, "NaN"));
+  expect_input_error(replaced(kBase, "0.8 0.1 0.1 1", "0.8 0.1"), {"<color>", "3 or 4 numbers"});
+  expect_input_error(replaced(kBase, "0.8 0.1 0.1 1", "0.8 -0.1 0.1 1"), {"<color>", ">= 0"});
+}
+
+TEST(ColladaErrors, IndexOutOfRange) {
+  const std::string text = replaced(kBase, "<p>0 1 2</p>", "<p>0 1 7</p>");
+  EXPECT_EQ(expect_input_error(text, {"index 7", "VERTEX", "out of range", "<p>"}),
+            line_of(text, "<p>"));
+  expect_input_error(replaced(kBase, "<p>0 1 2</p>", "<p>0 -1 2</p>"), {"'-1'", "<p>"});
+  expect_input_error(replaced(kBase, "<p>0 1 2</p>", "<p>0 1 4294967296</p>"), {"'4294967296'"});
+}
+
+TEST(ColladaErrors, VcountAndPLengthMismatch) {
+  const std::string text = replaced(kBase, "<vcount>3</vcount>", "<vcount>4</vcount>");
+  EXPECT_EQ(expect_input_error(text, {"<p>", "holds 3 indices", "<vcount> needs 4"}),
+            line_of(text, "<p>"));
+  expect_input_error(replaced(kBase, "<vcount>3</vcount>", "<vcount>4294967295</vcount>"),
+                     {"<vcount> needs 4294967295"});
+  const std::string small = replaced(kBase, "<vcount>3</vcount>", "<vcount>2</vcount>");
+  EXPECT_EQ(expect_input_error(small, {"<vcount>", "at least 3"}), line_of(small, "<vcount>2"));
+  expect_input_error(replaced(kBase, "<polylist material=\"mat\" count=\"1\">",
+                              "<polylist material=\"mat\" count=\"2\">"),
+                     {"count=\"2\"", "1 <vcount> entries"});
+}
+
+TEST(ColladaErrors, MissingVisualScene) {
+  const std::string no_scene =
+      replaced(kBase, "<scene><instance_visual_scene url=\"#Scene\"/></scene>\n", "");
+  EXPECT_EQ(expect_input_error(no_scene, {"<COLLADA>", "visual scene"}),
+            line_of(no_scene, "<COLLADA"));
+  const std::string empty = replaced(kBase, "<instance_visual_scene url=\"#Scene\"/>", "");
+  EXPECT_EQ(expect_input_error(empty, {"<scene>", "instance_visual_scene"}),
+            line_of(empty, "<scene>"));
+}
+
+TEST(ColladaErrors, SphereRadiusMustBePositive) {
+  for (const std::string radius : {"-1", "0", "-0"}) {
+    SCOPED_TRACE(radius);
+    const std::string text =
+        replaced(kBase, "<radius>0.5</radius>", "<radius>" + radius + "</radius>");
+    EXPECT_EQ(expect_input_error(text, {"<radius>", "positive"}), line_of(text, "<radius>"));
+  }
+  // Finite as a double, infinite as the float it is stored in.
+  expect_input_error(replaced(kBase, "<radius>0.5</radius>", "<radius>1e300</radius>"),
+                     {"<radius>", "'1e300'", "too large"});
+}
+
+TEST(ColladaErrors, HostileStructureFailsCleanly) {
+  // Nesting far deeper than any real file.
+  std::string deep;
+  for (int i = 0; i < 300; ++i) deep += "<node>";
+  for (int i = 0; i < 300; ++i) deep += "</node>";
+  expect_input_error(replaced(kBase, "<node id=\"n\">", deep + "<node id=\"n\">"),
+                     {"deeper than 256"});
+  // A node that instantiates itself.
+  expect_input_error(
+      replaced(kBase, "<node id=\"n\">", "<node id=\"n\"><instance_node url=\"#n\"/>"),
+      {"deeper than 256"});
+  // Doubling fan-out: 2^40 instances from 40 small nodes.
+  std::string chain = "<library_nodes>\n";
+  for (int i = 0; i < 40; ++i) {
+    chain += "<node id=\"c" + std::to_string(i) + "\"><instance_node url=\"#c" +
+             std::to_string(i + 1) + "\"/><instance_node url=\"#c" + std::to_string(i + 1) +
+             "\"/></node>\n";
+  }
+  chain += "<node id=\"c40\"/>\n</library_nodes>\n<library_visual_scenes>";
+  std::string fan = replaced(kBase, "<library_visual_scenes>", chain);
+  expect_input_error(
+      replaced(fan, "<node id=\"s\">", "<node><instance_node url=\"#c0\"/></node><node id=\"s\">"),
+      {"more than 1000000 nodes"});
+  // Unsupported primitives and transforms say so instead of silently dropping geometry.
+  const std::string polygons = replaced(kBase, "<polylist material=\"mat\" count=\"1\">",
+                                        "<polygons material=\"mat\" count=\"1\">");
+  expect_input_error(replaced(polygons, "</polylist>", "</polygons>"),
+                     {"<polygons", "not supported"});
+  expect_input_error(replaced(kBase, "<translate>0 0 2</translate>", "<skew>45 0 1 0 1 0 0</skew>"),
+                     {"<skew>", "not supported"});
+}
+
+TEST(ColladaErrors, BadMaterialAndLightValues) {
+  const std::string cgl = "<extra><technique profile=\"CGL\">";
+  const std::string effect = "<effect id=\"red-effect\">";
+  expect_input_error(replaced(kBase, effect, effect + cgl + "<velvet/></technique></extra>"),
+                     {"<velvet>", "unknown CGL material"});
+  expect_input_error(
+      replaced(kBase, effect, effect + cgl + "<glass><ior>-1</ior></glass></technique></extra>"),
+      {"<ior>", "> 0"});
+  const std::string lights =
+      "<library_lights><light id=\"l\"><technique_common><point><color>1 1 1</color>"
+      "<constant_attenuation>0</constant_attenuation></point></technique_common></light></"
+      "library_lights>\n"
+      "<library_geometries>";
+  std::string text = replaced(kBase, "<library_geometries>", lights);
+  text = replaced(text, "<translate>0 0 2</translate>", "<instance_light url=\"#l\"/>");
+  expect_input_error(text, {"<point>", "attenuation are all zero"});
+}
+
+}  // namespace
+}  // namespace prism
