@@ -1,7 +1,10 @@
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/image.h"
@@ -25,6 +28,7 @@ struct ColorOptions {
 /// The active OpenColorIO configuration and the processors prism needs from it. Every colour
 /// conversion in prism goes through this class. Construction validates every name and throws
 /// Error(kUsage) listing what the config offers; after that, methods are thread-safe.
+/// How roles, fallbacks and studio configs ($OCIO) are handled: see color_pipeline.cpp.
 class ColorPipeline {
  public:
   explicit ColorPipeline(const ColorOptions& options);
@@ -51,11 +55,25 @@ class ColorPipeline {
   std::string config_source() const;
 
   /// Converts the RGB(A) beauty channels of an image (named R, G, B) from the working space to
-  /// the output space, in place; other channels (AOVs that are data) are left alone.
+  /// the output space, in place, and likewise every colour AOV ("albedo.R/G/B", see
+  /// is_color_layer); other channels (AOVs that are data) are left alone.
   void working_to_output(Image& image) const;
   /// Display-referred 8-bit-ready values in [0,1]: the beauty channels through exposure, look,
   /// display and view. Returns an RGB image.
   Image working_to_display(const Image& image) const;
+
+  /// Converts one colour between two colour spaces (names, aliases or roles) of the config.
+  /// Throws Error(kUsage) listing the colour spaces when a name is unknown.
+  Rgb convert(const Rgb& color, const std::string& from, const std::string& to) const;
+  /// One working-space colour through exposure, look, display and view (not clamped).
+  Rgb working_to_display(const Rgb& color) const;
+  /// CIE xy of the output space's red, green, blue primaries and white point (OpenEXR order
+  /// Rx Ry Gx Gy Bx By Wx Wy), derived from the config through its aces_interchange (else a
+  /// scene-referred cie_xyz_d65_interchange) role; nothing when the config offers neither or the
+  /// output space is not linear. Published values replace derived ones within 1e-3.
+  std::optional<std::array<float, 8>> output_chromaticities() const;
+  /// Name of the display's colour space the view ends in (e.g. "sRGB - Display").
+  std::string display_color_space() const;
 
   struct Impl;
 
@@ -68,7 +86,26 @@ struct ColorConfigListing {
   std::string config_source;
   std::vector<std::string> color_spaces, displays, looks, roles;
   std::vector<std::pair<std::string, std::vector<std::string>>> views;  ///< per display
+  std::string config_name;                                              ///< the config's `name:`
+  std::string default_display;                                          ///< empty when none
+  std::vector<std::pair<std::string, std::string>> role_spaces;         ///< (role, colour space)
 };
+/// Loads the config chosen as ColorOptions::ocio_config would be (`ocio_config`, else $OCIO,
+/// else the bundled config) and lists it. Throws Error(kUsage/kInput) when it cannot be loaded.
 ColorConfigListing list_color_config(const std::string& ocio_config);
+/// The listing as the text `prism colorspaces` prints.
+std::string format_color_config(const ColorConfigListing& listing);
+
+/// Text of the bundled config (color/ocio/config.ocio), compiled into the program so an installed
+/// binary needs no source tree.
+const std::string& bundled_color_config_text();
+
+/// Whether an AOV layer holds colour that follows the beauty through colour conversions
+/// ("" for the beauty itself, "albedo", "diffuse", "specular", "emission", ...). Data layers
+/// (N, Z, P, depth, sampleCount, variance, ...) are never colour-converted.
+bool is_color_layer(const std::string& layer);
+/// Indices of every (R, G, B) channel triple of a colour layer of `image`: the beauty first
+/// ("R", "G", "B"), then "<layer>.R/G/B" of each colour layer in channel order.
+std::vector<std::array<int, 3>> color_channel_triples(const Image& image);
 
 }  // namespace prism
