@@ -19,10 +19,16 @@ ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& pa
       {"prism:resolution", fmt::format("{}x{}", settings.width, settings.height)},
       {"prism:build_ms", fmt::format("{:.3f}", record.build_ms)},
       {"prism:render_ms", fmt::format("{:.3f}", record.render_ms)},
+      {"prism:samples_per_second", fmt::format("{:.0f}", samples_per_second(settings, record))},
       {"prism:command_line", record.command_line},
       {"prism:params", params.to_string()},
       {"prism:non_finite_samples", std::to_string(record.non_finite_samples)},
   };
+}
+
+double samples_per_second(const RenderSettings& settings, const RenderRecord& record) {
+  const double samples = double(settings.width) * settings.height * settings.spp;
+  return record.render_ms > 0.0 ? samples / (record.render_ms * 1e-3) : 0.0;
 }
 
 std::string quote_command_line(int argc, const char* const* argv) {

@@ -25,6 +25,9 @@ ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& pa
                               const RenderRecord& record);
 
 /// argv as one shell-readable line: arguments with spaces or quotes are single-quoted.
+/// Camera samples per second of wall-clock render time (width * height * spp / render time).
+double samples_per_second(const RenderSettings& settings, const RenderRecord& record);
+
 std::string quote_command_line(int argc, const char* const* argv);
 
 }  // namespace prism

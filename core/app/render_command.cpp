@@ -46,8 +46,7 @@ void write_outputs(const std::vector<OutputFile>& outputs, const Image& image,
 
 std::string summary_line(const std::filesystem::path& scene, const RenderSettings& settings,
                          const RenderRecord& record) {
-  const double samples = double(settings.width) * settings.height * settings.spp;
-  const double per_second = record.render_ms > 0.0 ? samples / (record.render_ms * 1e-3) : 0.0;
+  const double per_second = samples_per_second(settings, record);
   std::string files;
   for (const auto& o : settings.outputs) files += (files.empty() ? "" : ", ") + o.path.string();
   return fmt::format(

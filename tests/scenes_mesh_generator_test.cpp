@@ -1,0 +1,197 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <utility>
+
+#include "core/error.h"
+#include "core/scene_geometry.h"
+#include "scenes/mesh_generator.h"
+
+namespace prism {
+namespace {
+
+const GeneratedMeshKind kAllKinds[] = {GeneratedMeshKind::kSphere, GeneratedMeshKind::kNoisySphere,
+                                       GeneratedMeshKind::kSoup, GeneratedMeshKind::kSlivers,
+                                       GeneratedMeshKind::kGrid};
+
+bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; }
+
+/// Edge -> number of triangles using it, with the edge's endpoints ordered.
+std::map<std::pair<uint32_t, uint32_t>, int> edge_use(const TriangleMesh& mesh) {
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (const auto& t : mesh.triangles) {
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = t[e], b = t[(e + 1) % 3];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  return uses;
+}
+
+TEST(MeshGenerator, ParsesAndPrintsEveryKind) {
+  for (const GeneratedMeshKind kind : kAllKinds) {
+    EXPECT_EQ(parse_generated_mesh_kind(to_string(kind)), kind);
+  }
+  try {
+    parse_generated_mesh_kind("spehre");
+    FAIL() << "no error for an unknown kind";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
+    EXPECT_NE(std::string(e.what()).find("noisy_sphere"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MeshGenerator, ExactCountsForSoupAndSlivers) {
+  for (const size_t n : {1u, 7u, 1000u}) {
+    const TriangleMesh soup = generate_mesh(GeneratedMeshKind::kSoup, n, 3);
+    EXPECT_EQ(soup.triangle_count(), n);
+    EXPECT_EQ(soup.positions.size(), 3 * n);  // no shared vertices
+    const TriangleMesh slivers = generate_mesh(GeneratedMeshKind::kSlivers, n, 3);
+    EXPECT_EQ(slivers.triangle_count(), n);
+  }
+}
+
+TEST(MeshGenerator, SphereAndGridCountsAreNearTheRequest) {
+  for (const size_t n : {100u, 2000u, 50000u}) {
+    for (const auto kind :
+         {GeneratedMeshKind::kSphere, GeneratedMeshKind::kNoisySphere, GeneratedMeshKind::kGrid}) {
+      const TriangleMesh mesh = generate_mesh(kind, n, 1);
+      const double ratio = double(mesh.triangle_count()) / double(n);
+      EXPECT_GT(ratio, 0.8) << to_string(kind) << " " << n;
+      EXPECT_LT(ratio, 1.25) << to_string(kind) << " " << n;
+    }
+  }
+  // Tiny requests still give a closed sphere and one grid cell.
+  EXPECT_GE(generate_mesh(GeneratedMeshKind::kSphere, 1).triangle_count(), 6u);
+  EXPECT_EQ(generate_mesh(GeneratedMeshKind::kGrid, 1).triangle_count(), 2u);
+}
+
+TEST(MeshGenerator, ZeroTrianglesIsAnError) {
+  EXPECT_THROW(generate_mesh(GeneratedMeshKind::kSoup, 0), Error);
+}
+
+TEST(MeshGenerator, DeterministicForKindCountAndSeed) {
+  for (const GeneratedMeshKind kind : kAllKinds) {
+    const TriangleMesh a = generate_mesh(kind, 500, 42, 3);
+    const TriangleMesh b = generate_mesh(kind, 500, 42, 3);
+    ASSERT_EQ(a.positions.size(), b.positions.size()) << to_string(kind);
+    ASSERT_EQ(a.triangles, b.triangles) << to_string(kind);
+    for (size_t i = 0; i < a.positions.size(); ++i) {
+      ASSERT_TRUE(same_bits(a.positions[i], b.positions[i])) << to_string(kind) << " vertex " << i;
+    }
+    EXPECT_EQ(a.material_id, 3u);
+  }
+  // The seed matters for the random kinds.
+  for (const auto kind :
+       {GeneratedMeshKind::kNoisySphere, GeneratedMeshKind::kSoup, GeneratedMeshKind::kSlivers}) {
+    const TriangleMesh a = generate_mesh(kind, 500, 1);
+    const TriangleMesh b = generate_mesh(kind, 500, 2);
+    ASSERT_EQ(a.positions.size(), b.positions.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < a.positions.size(); ++i)
+      differing += !same_bits(a.positions[i], b.positions[i]);
+    EXPECT_GT(differing, a.positions.size() / 2) << to_string(kind);
+  }
+}
+
+TEST(MeshGenerator, StaysInsideTheDocumentedBounds) {
+  const float eps = 1e-5f;
+  for (const GeneratedMeshKind kind : kAllKinds) {
+    const TriangleMesh mesh = generate_mesh(kind, 3000, 9);
+    const Bounds3 b = mesh.bounds();
+    ASSERT_FALSE(b.empty());
+    const float limit = kind == GeneratedMeshKind::kNoisySphere ? 1.4f : 1.0f + eps;
+    EXPECT_LE(max_component(glm::abs(b.lower)), limit) << to_string(kind);
+    EXPECT_LE(max_component(glm::abs(b.upper)), limit) << to_string(kind);
+  }
+  // The sphere's vertices lie on the unit sphere, the grid's in z = 0 covering [-1,1]^2.
+  for (const Vec3& p : generate_mesh(GeneratedMeshKind::kSphere, 2000).positions) {
+    EXPECT_NEAR(glm::length(p), 1.0f, 1e-5f);
+  }
+  const TriangleMesh grid = generate_mesh(GeneratedMeshKind::kGrid, 200);
+  for (const Vec3& p : grid.positions) EXPECT_EQ(p.z, 0.0f);
+  EXPECT_EQ(grid.bounds().lower, Vec3(-1.0f, -1.0f, 0.0f));
+  EXPECT_EQ(grid.bounds().upper, Vec3(1.0f, 1.0f, 0.0f));
+  // The noisy sphere really is displaced.
+  float lo = 2.0f, hi = 0.0f;
+  for (const Vec3& p : generate_mesh(GeneratedMeshKind::kNoisySphere, 2000, 5).positions) {
+    lo = std::min(lo, glm::length(p));
+    hi = std::max(hi, glm::length(p));
+  }
+  EXPECT_LT(lo, 0.97f);
+  EXPECT_GT(hi, 1.03f);
+  EXPECT_GT(lo, 0.6f);
+}
+
+TEST(MeshGenerator, GridSharesEdgesAndVertices) {
+  const TriangleMesh grid = generate_mesh(GeneratedMeshKind::kGrid, 2 * 10 * 10);
+  ASSERT_EQ(grid.triangle_count(), 200u);
+  EXPECT_EQ(grid.positions.size(), 11u * 11u);
+  const auto uses = edge_use(grid);
+  size_t shared = 0, boundary = 0;
+  for (const auto& [edge, count] : uses) {
+    EXPECT_LE(count, 2);
+    (count == 2 ? shared : boundary) += 1;
+  }
+  EXPECT_EQ(boundary, 4u * 10u);
+  EXPECT_EQ(shared, uses.size() - boundary);
+  EXPECT_GT(shared, 0u);
+  // Every triangle faces +z.
+  for (const auto& t : grid.triangles) {
+    const Vec3 n = glm::cross(grid.positions[t.y] - grid.positions[t.x],
+                              grid.positions[t.z] - grid.positions[t.x]);
+    EXPECT_GT(n.z, 0.0f);
+  }
+}
+
+TEST(MeshGenerator, SpheresAreClosedAndOutwardFacing) {
+  for (const auto kind : {GeneratedMeshKind::kSphere, GeneratedMeshKind::kNoisySphere}) {
+    const TriangleMesh mesh = generate_mesh(kind, 1000, 2);
+    for (const auto& [edge, count] : edge_use(mesh)) {
+      ASSERT_EQ(count, 2) << to_string(kind) << " edge " << edge.first << "-" << edge.second;
+    }
+    // Euler characteristic of a sphere: V - E + F = 2.
+    const long v = long(mesh.positions.size()), f = long(mesh.triangle_count());
+    EXPECT_EQ(v - long(edge_use(mesh).size()) + f, 2);
+    for (const auto& t : mesh.triangles) {
+      const Vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y], p2 = mesh.positions[t.z];
+      const Vec3 n = glm::cross(p1 - p0, p2 - p0);
+      ASSERT_GT(glm::dot(n, p0 + p1 + p2), 0.0f) << to_string(kind);
+    }
+  }
+}
+
+TEST(MeshGenerator, SliversAreLongAndThin) {
+  const TriangleMesh mesh = generate_mesh(GeneratedMeshKind::kSlivers, 2000, 11);
+  for (const auto& t : mesh.triangles) {
+    const Vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y], p2 = mesh.positions[t.z];
+    const float longest =
+        std::max({glm::length(p1 - p0), glm::length(p2 - p1), glm::length(p0 - p2)});
+    const float area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
+    ASSERT_GT(area2, 0.0f);
+    // Longest edge over the height on it.
+    const float aspect = longest * longest / area2;
+    ASSERT_GT(aspect, 900.0f);
+    ASSERT_LT(aspect, 1100.0f);
+    // It crosses the box: at least 2 long along some axis.
+    ASSERT_GE(max_component(glm::abs(p1 - p0)), 2.0f - 1e-6f);
+  }
+}
+
+TEST(MeshGenerator, EveryKindPassesValidation) {
+  for (const GeneratedMeshKind kind : kAllKinds) {
+    SceneGeometry geometry;
+    geometry.meshes.push_back(generate_mesh(kind, 777, 5));
+    EXPECT_NO_THROW(geometry.validate()) << to_string(kind);
+    // Room for Embree's padding is there already, so finalize() does not reallocate.
+    const Vec3* before = geometry.meshes[0].positions.data();
+    geometry.finalize();
+    EXPECT_EQ(geometry.meshes[0].positions.data(), before) << to_string(kind);
+  }
+}
+
+}  // namespace
+}  // namespace prism
