@@ -1,0 +1,40 @@
+#pragma once
+
+// Query conventions shared by every backend and by the double-precision oracle, so that they
+// differ only in traversal and arithmetic, never in what counts as a valid ray or a closer hit.
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+
+#include "core/hit.h"
+#include "core/math.h"
+#include "core/ray.h"
+
+namespace prism {
+
+/// The ray a backend actually traces for `ray`, or nothing when no hit is possible.
+/// - A ray with a non-finite origin or direction, a zero direction, a NaN bound or
+///   tmin > tmax hits nothing (occluded() is false); backends never trace it.
+/// - Rays start at their origin: a negative tmin counts as 0 (Embree cannot search behind the
+///   origin consistently, so no backend does).
+inline std::optional<Ray> prepare_query(const Ray& ray) {
+  if (!is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
+  if (ray.direction == Vec3(0.0f)) return std::nullopt;
+  if (std::isnan(ray.tmin) || std::isnan(ray.tmax)) return std::nullopt;
+  Ray out = ray;
+  out.tmin = std::fmax(ray.tmin, 0.0f);
+  if (!(out.tmin <= out.tmax)) return std::nullopt;
+  return out;
+}
+
+/// The closest-hit order: smaller t first; at exactly equal t the lower (geom_id, prim_id)
+/// wins. Every backend that does its own traversal applies it, so brute and bvh agree even on
+/// exact ties. Returns whether the candidate comes before `best`.
+inline bool comes_before(float t, uint32_t geom_id, uint32_t prim_id, const Hit& best) {
+  if (t != best.t) return t < best.t;
+  if (geom_id != best.geom_id) return geom_id < best.geom_id;
+  return prim_id < best.prim_id;
+}
+
+}  // namespace prism
