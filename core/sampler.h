@@ -22,6 +22,10 @@ class Sampler {
   /// The next two dimensions' values in [0, 1)^2.
   virtual Vec2 get_2d() = 0;
   virtual std::unique_ptr<Sampler> clone() const = 0;
+  /// Tells the sampler how many samples per pixel the render takes (stratified samplers size
+  /// their strata from it; sample indices beyond it stay valid). Call before the first
+  /// start_pixel_sample(); clone() keeps the setting. The default ignores it.
+  virtual void set_sample_count(int samples_per_pixel) {}
 };
 
 /// Uniform independent samples from a counter-based hash of (pixel, index, dimension, seed).

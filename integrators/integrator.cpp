@@ -1,6 +1,10 @@
 #include "integrators/integrator.h"
 
+#include <cmath>
+
 #include "core/parallel.h"
+#include "integrators/bsdf/bsdf_factory.h"
+#include "integrators/sampling/warp.h"
 
 namespace prism {
 namespace {
@@ -17,20 +21,63 @@ uint64_t PixelIntegrator::progress_total(int width, int height, int spp) const {
   return uint64_t(width) * uint64_t(height);
 }
 
+AovSample first_hit_aovs(const Ray& ray, const RenderContext& context) {
+  AovSample aovs;
+  const std::optional<Hit> hit = context.accel.intersect(ray);
+  if (!hit) return aovs;
+  const SurfaceInteraction si = context.scene.surface_at(ray, *hit);
+  aovs.normal = si.shading_normal;
+  aovs.depth = hit->t * glm::length(ray.direction);
+  if (si.material_id < context.scene.materials.size()) {
+    aovs.albedo = material_albedo(context.scene.materials[si.material_id]);
+  }
+  return aovs;
+}
+
+Rgb PixelIntegrator::li_aov(const Ray& ray, Sampler& sampler, const RenderContext& context,
+                            AovSample& aovs) const {
+  aovs = first_hit_aovs(ray, context);
+  return li(ray, sampler, context);
+}
+
 void PixelIntegrator::render(const RenderContext& context, Film& film) const {
+  // end_render() on every way out, exceptions included.
+  struct EndRender {
+    const PixelIntegrator* self;
+    ~EndRender() { self->end_render(); }
+  };
+  begin_render(context);
+  const EndRender end_render_guard{this};
   const glm::vec2 film_size(film.width(), film.height());
+  const int spp = std::max(1, context.spp);
+  const int batch = context.adaptive_batch;
+  const float tolerance = context.adaptive_tolerance;
   parallel_for_tiles(film.width(), film.height(), kTileSize, [&](const Tile& tile) {
     // One sampler per tile: cheap to clone, and its values depend only on (pixel, index).
     const std::unique_ptr<Sampler> sampler = context.sampler_prototype.clone();
+    sampler->set_sample_count(spp);
     for (int y = tile.begin.y; y < tile.end.y; ++y) {
       for (int x = tile.begin.x; x < tile.end.x; ++x) {
         const glm::ivec2 pixel{x, y};
-        for (int s = 0; s < context.spp; ++s) {
+        // Illuminance sums for adaptive sampling, in double: thousands of samples.
+        double s1 = 0.0, s2 = 0.0;
+        for (int s = 0; s < spp; ++s) {
           sampler->start_pixel_sample(pixel, uint32_t(s));
           const Vec2 film_position = (Vec2(pixel) + sampler->get_2d()) / film_size;
           const Vec2 lens = sampler->get_2d();
           const Ray ray = context.camera.generate_ray(film_position, lens);
-          film.add_sample(pixel, li(ray, *sampler, context));
+          AovSample aovs;
+          const Rgb radiance = li_aov(ray, *sampler, context, aovs);
+          film.add_sample(pixel, radiance, aovs);
+          if (batch <= 0) continue;
+          const double illuminance = is_finite(radiance) ? double(luminance(radiance)) : 0.0;
+          s1 += illuminance;
+          s2 += illuminance * illuminance;
+          const int n = s + 1;
+          if (n % batch != 0 || n < 2) continue;
+          const double mean = s1 / n;
+          const double variance = std::max(0.0, (s2 - s1 * s1 / n) / (n - 1));
+          if (1.96 * std::sqrt(variance / n) <= double(tolerance) * mean) break;
         }
       }
     }

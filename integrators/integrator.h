@@ -27,6 +27,9 @@ struct RenderContext {
   int adaptive_batch = 0;                ///< adaptive sampling batch size, 0 = off (-a B tol)
   float adaptive_tolerance = 0.05f;      ///< adaptive sampling tolerance (-a B tol)
   ProgressReporter* progress = nullptr;  ///< may be null; advanced as progress_total() says
+  /// Environment map (-e): latitude-longitude radiance with channels R, G, B in the working
+  /// space, row 0 at the pole in the direction of camera.up; null for none. Read by color/.
+  const Image* environment = nullptr;
 };
 
 /// Produces an image of a scene. Implementations are chosen by name from integrator_registry().
@@ -43,6 +46,9 @@ class Integrator {
 
 /// Integrators that estimate radiance independently per camera ray: the parallel tile loop,
 /// per-thread sampler clones and the camera-ray generation live here; subclasses implement li().
+/// The tile loop also runs adaptive sampling (RenderContext::adaptive_batch > 0): after every
+/// batch of B samples of a pixel it stops once 1.96 sigma / sqrt(n) <= tolerance * mu for the
+/// illuminance (luminance) of the samples taken, as the homework defines it.
 class PixelIntegrator : public Integrator {
  public:
   void render(const RenderContext& context, Film& film) const override;
@@ -51,7 +57,19 @@ class PixelIntegrator : public Integrator {
  protected:
   /// Radiance arriving along `ray` (a camera ray). Called concurrently from many threads.
   virtual Rgb li(const Ray& ray, Sampler& sampler, const RenderContext& context) const = 0;
+  /// li() plus the AOVs of the ray's first hit. The default calls li() and traces the ray once
+  /// more for the AOVs; integrators that find the first hit anyway override it.
+  virtual Rgb li_aov(const Ray& ray, Sampler& sampler, const RenderContext& context,
+                     AovSample& aovs) const;
+  /// Called by render() on the calling thread before the first li() and after the last one:
+  /// subclasses build and drop per-render state there (lights, BSDFs). render() of one
+  /// instance must therefore not run concurrently with itself.
+  virtual void begin_render(const RenderContext& context) const {}
+  virtual void end_render() const {}
 };
+
+/// The AOVs (albedo, shading normal, depth) of the first hit of `ray`, by one intersect().
+AovSample first_hit_aovs(const Ray& ray, const RenderContext& context);
 
 /// The table of integrators. Parameters use the integrator's name as prefix.
 const Registry<Integrator>& integrator_registry();

@@ -1,0 +1,216 @@
+#include "core/samplers.h"
+
+#include <bit>
+#include <cmath>
+#include <string>
+
+namespace prism {
+namespace {
+
+uint64_t key_of(glm::ivec2 pixel) {
+  return (uint64_t(uint32_t(pixel.x)) << 32) | uint32_t(pixel.y);
+}
+
+/// Hash of (pixel, dimension, seed): keys one dimension's permutation and scramble.
+uint64_t dimension_hash(uint64_t pixel_key, uint32_t dimension, uint64_t seed) {
+  return mix_bits(mix_bits(pixel_key ^ mix_bits(seed + 0x9e3779b97f4a7c15ULL)) +
+                  uint64_t(dimension) * 0xd1b54a32d192ed03ULL);
+}
+
+uint32_t reverse_bits(uint32_t v) {
+  v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+  v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+  v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
+  v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
+  return (v >> 16) | (v << 16);
+}
+
+uint32_t positive_count(int n) { return n > 0 ? uint32_t(n) : 1u; }
+
+}  // namespace
+
+uint32_t permutation_element(uint32_t index, uint32_t count, uint64_t seed) {
+  if (count <= 1) return 0;
+  // A bijection on k-bit integers (k = bit width of count - 1), iterated until the value is in
+  // [0, count) again ("cycle walking"): the cycle through `index` returns into the range, so
+  // the restriction is a permutation of [0, count).
+  const int bits = std::bit_width(count - 1);
+  const uint32_t mask = bits >= 32 ? 0xffffffffu : (1u << bits) - 1u;
+  const int shift = std::max(1, bits / 2);
+  const uint32_t a = uint32_t(seed) & mask;
+  const uint32_t m = (uint32_t(seed >> 32) | 1u) & mask;  // odd: invertible modulo 2^bits
+  const uint32_t c = uint32_t(mix_bits(seed) >> 32) & mask;
+  uint32_t v = index;
+  do {
+    // Every step is invertible modulo 2^bits.
+    v ^= a;
+    v = (v * m) & mask;
+    v ^= v >> shift;
+    v = (v + c) & mask;
+    v = (v * 0x9e3779b1u) & mask;
+    v ^= v >> shift;
+  } while (v >= count);
+  return v;
+}
+
+uint32_t sobol_dimension0(uint32_t index) { return reverse_bits(index); }
+
+uint32_t sobol_dimension1(uint32_t index) {
+  // Direction numbers of the second Sobol dimension (primitive polynomial x + 1): column j of
+  // the generator matrix is v_j = v_{j-1} ^ (v_{j-1} >> 1), v_0 = 2^31.
+  uint32_t result = 0;
+  uint32_t v = 0x80000000u;
+  for (; index != 0; index >>= 1, v ^= v >> 1) {
+    if (index & 1u) result ^= v;
+  }
+  return result;
+}
+
+uint32_t owen_scramble(uint32_t v, uint32_t seed) {
+  // After reversal, the most significant bit of the value is the least significant bit of x.
+  // Adding, multiplying and xoring with x * even only carry information from low to high bits,
+  // so each output bit depends on itself (flipped or not) and on less significant bits of x:
+  // a nested scramble of the original value.
+  uint32_t x = reverse_bits(v);
+  x ^= x * 0x3d20adeau;
+  x += seed;
+  x *= (seed >> 16) | 1u;
+  x ^= x * 0x05526c56u;
+  x ^= x * 0x53a22864u;
+  return reverse_bits(x);
+}
+
+// ---- JitteredSampler -------------------------------------------------------------------
+
+JitteredSampler::JitteredSampler(uint64_t seed, int samples_per_pixel) : seed_(seed) {
+  set_sample_count(samples_per_pixel);
+}
+
+void JitteredSampler::set_sample_count(int samples_per_pixel) {
+  strata_per_axis_ = uint32_t(std::ceil(std::sqrt(double(positive_count(samples_per_pixel)))));
+}
+
+void JitteredSampler::start_pixel_sample(glm::ivec2 pixel, uint32_t index) {
+  pixel_key_ = key_of(pixel);
+  index_ = index;
+  dimension_ = 0;
+}
+
+float JitteredSampler::get_1d() {
+  const uint64_t h = dimension_hash(pixel_key_, dimension_++, seed_);
+  const uint32_t strata = strata_per_axis_ * strata_per_axis_;
+  const uint32_t round = index_ / strata;
+  const uint32_t stratum = permutation_element(index_ % strata, strata, mix_bits(h + round));
+  const float jitter = bits_to_unit_float(uint32_t(mix_bits(h ^ (uint64_t(index_) << 1)) >> 32));
+  return std::min((float(stratum) + jitter) / float(strata), 0x1.fffffep-1f);
+}
+
+Vec2 JitteredSampler::get_2d() {
+  const uint64_t h = dimension_hash(pixel_key_, dimension_, seed_);
+  dimension_ += 2;
+  const uint32_t n = strata_per_axis_;
+  const uint32_t strata = n * n;
+  const uint32_t round = index_ / strata;
+  const uint32_t stratum = permutation_element(index_ % strata, strata, mix_bits(h + round));
+  const uint64_t j = mix_bits(h ^ (uint64_t(index_) << 1));
+  const float jx = bits_to_unit_float(uint32_t(j >> 32));
+  const float jy = bits_to_unit_float(uint32_t(j));
+  return {std::min((float(stratum % n) + jx) / float(n), 0x1.fffffep-1f),
+          std::min((float(stratum / n) + jy) / float(n), 0x1.fffffep-1f)};
+}
+
+std::unique_ptr<Sampler> JitteredSampler::clone() const {
+  auto copy = std::make_unique<JitteredSampler>(seed_);
+  copy->strata_per_axis_ = strata_per_axis_;
+  return copy;
+}
+
+// ---- SobolSampler ----------------------------------------------------------------------
+
+SobolSampler::SobolSampler(uint64_t seed, int samples_per_pixel) : seed_(seed) {
+  set_sample_count(samples_per_pixel);
+}
+
+void SobolSampler::set_sample_count(int samples_per_pixel) {
+  samples_per_pixel_ = positive_count(samples_per_pixel);
+}
+
+void SobolSampler::start_pixel_sample(glm::ivec2 pixel, uint32_t index) {
+  pixel_key_ = key_of(pixel);
+  index_ = index;
+  dimension_ = 0;
+}
+
+uint32_t SobolSampler::permuted_index(uint64_t h) const {
+  // Indices past the sample count form further blocks, each permuted on its own, so that any
+  // index stays valid.
+  const uint32_t n = samples_per_pixel_;
+  const uint32_t block = index_ / n;
+  return block * n + permutation_element(index_ % n, n, mix_bits(h + block));
+}
+
+float SobolSampler::get_1d() {
+  const uint64_t h = dimension_hash(pixel_key_, dimension_++, seed_);
+  const uint32_t i = permuted_index(h);
+  return bits_to_unit_float(owen_scramble(sobol_dimension0(i), uint32_t(h >> 32)));
+}
+
+Vec2 SobolSampler::get_2d() {
+  const uint64_t h = dimension_hash(pixel_key_, dimension_, seed_);
+  dimension_ += 2;
+  const uint32_t i = permuted_index(h);
+  return {bits_to_unit_float(owen_scramble(sobol_dimension0(i), uint32_t(h >> 32))),
+          bits_to_unit_float(owen_scramble(sobol_dimension1(i), uint32_t(h)))};
+}
+
+std::unique_ptr<Sampler> SobolSampler::clone() const {
+  auto copy = std::make_unique<SobolSampler>(seed_);
+  copy->samples_per_pixel_ = samples_per_pixel_;
+  return copy;
+}
+
+// ---- registry --------------------------------------------------------------------------
+
+namespace {
+
+uint64_t seed_param(const ParamSet& params) {
+  return uint64_t(params.get_int("sampler.seed", 0, 0, std::numeric_limits<long long>::max()));
+}
+int spp_param(const ParamSet& params) {
+  return int(params.get_int("sampler.spp", 1, 1, std::numeric_limits<int>::max()));
+}
+
+}  // namespace
+
+const Registry<Sampler>& sampler_registry() {
+  using Entry = Registry<Sampler>::Entry;
+  static const Registry<Sampler> registry(
+      "sampler",
+      {
+          Entry{"independent",
+                "uniform random values from a hash of (pixel, index, dimension, seed)",
+                [](const ParamSet& p) -> std::unique_ptr<Sampler> {
+                  return std::make_unique<IndependentSampler>(seed_param(p));
+                }},
+          Entry{"jittered", "n x n strata per dimension pair, n = ceil(sqrt(spp)), jittered",
+                [](const ParamSet& p) -> std::unique_ptr<Sampler> {
+                  return std::make_unique<JitteredSampler>(seed_param(p), spp_param(p));
+                }},
+          Entry{"sobol",
+                "Owen-scrambled Sobol (0,2)-sequence per dimension pair, padded by per-pixel "
+                "index permutations",
+                [](const ParamSet& p) -> std::unique_ptr<Sampler> {
+                  return std::make_unique<SobolSampler>(seed_param(p), spp_param(p));
+                }},
+      });
+  return registry;
+}
+
+std::unique_ptr<Sampler> create_sampler(std::string_view name, uint64_t seed,
+                                        const ParamSet& params) {
+  ParamSet copy = params;
+  if (!copy.has("sampler.seed")) copy.set("sampler.seed", std::to_string(seed));
+  return sampler_registry().create(name, copy);
+}
+
+}  // namespace prism

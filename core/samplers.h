@@ -1,0 +1,84 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "core/param_set.h"
+#include "core/registry.h"
+#include "core/sampler.h"
+
+namespace prism {
+
+/// Stratified samples: every dimension (and every 2D pair) of the samples of one pixel is
+/// divided into n x n strata, n = ceil(sqrt(samples per pixel)); each block of n^2 consecutive
+/// sample indices visits every stratum once, in a random order per (pixel, dimension), with an
+/// independent uniform jitter inside the stratum.
+class JitteredSampler final : public Sampler {
+ public:
+  explicit JitteredSampler(uint64_t seed, int samples_per_pixel = 1);
+  std::string_view name() const override { return "jittered"; }
+  void start_pixel_sample(glm::ivec2 pixel, uint32_t index) override;
+  float get_1d() override;
+  Vec2 get_2d() override;
+  std::unique_ptr<Sampler> clone() const override;
+  void set_sample_count(int samples_per_pixel) override;
+
+ private:
+  uint64_t seed_;
+  uint32_t strata_per_axis_ = 1;
+  uint64_t pixel_key_ = 0;
+  uint32_t index_ = 0;
+  uint32_t dimension_ = 0;
+};
+
+/// Owen-scrambled Sobol points, "padded": every 2D pair uses the first two Sobol dimensions (a
+/// (0,2)-sequence) and every 1D value the first, each with its own scramble and its own random
+/// permutation of the pixel's sample indices per (pixel, dimension), which decorrelates the
+/// dimensions. With a power-of-two sample count every pair of a pixel is a (0,m,2)-net.
+class SobolSampler final : public Sampler {
+ public:
+  explicit SobolSampler(uint64_t seed, int samples_per_pixel = 1);
+  std::string_view name() const override { return "sobol"; }
+  void start_pixel_sample(glm::ivec2 pixel, uint32_t index) override;
+  float get_1d() override;
+  Vec2 get_2d() override;
+  std::unique_ptr<Sampler> clone() const override;
+  void set_sample_count(int samples_per_pixel) override;
+
+ private:
+  /// The permuted Sobol index of the current sample in the current dimension, and the hash
+  /// that keys the scrambles.
+  uint32_t permuted_index(uint64_t dimension_hash) const;
+
+  uint64_t seed_;
+  uint32_t samples_per_pixel_ = 1;
+  uint64_t pixel_key_ = 0;
+  uint32_t index_ = 0;
+  uint32_t dimension_ = 0;
+};
+
+/// Element `index` (< count) of a pseudo-random permutation of [0, count) chosen by `seed`:
+/// a bijection for every seed, computed in O(1) expected time without tables.
+uint32_t permutation_element(uint32_t index, uint32_t count, uint64_t seed);
+
+/// Sample `index` of Sobol dimension 0 (the van der Corput sequence) as 0.32 fixed point.
+uint32_t sobol_dimension0(uint32_t index);
+/// Sample `index` of Sobol dimension 1 (generator: the Pascal matrix mod 2) as 0.32 fixed point.
+uint32_t sobol_dimension1(uint32_t index);
+
+/// A nested uniform (Owen) scramble of the 0.32 fixed-point value `v`: each bit is flipped by
+/// a pseudo-random function of the more significant bits and `seed` (hash-based, after Burley,
+/// "Practical Hash-based Owen Scrambling", 2020).
+uint32_t owen_scramble(uint32_t v, uint32_t seed);
+
+/// The table of samplers: independent, jittered, sobol. Factories read "sampler.seed" (default
+/// 0) and "sampler.spp" (default 1; the tile loop also calls set_sample_count()).
+const Registry<Sampler>& sampler_registry();
+
+/// sampler_registry().create(name, params) with "sampler.seed" set to `seed` (unless params
+/// already hold it).
+std::unique_ptr<Sampler> create_sampler(std::string_view name, uint64_t seed,
+                                        const ParamSet& params = {});
+
+}  // namespace prism

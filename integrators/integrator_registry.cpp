@@ -1,0 +1,35 @@
+#include <memory>
+
+#include "integrators/debug_integrators.h"
+#include "integrators/direct_integrator.h"
+#include "integrators/integrator.h"
+#include "integrators/path_integrator.h"
+
+namespace prism {
+
+const Registry<Integrator>& integrator_registry() {
+  using Entry = Registry<Integrator>::Entry;
+  static const Registry<Integrator> registry(
+      "integrator",
+      {
+          Entry{"path",
+                "global illumination: path tracing with next-event estimation, MIS, Russian "
+                "roulette (path.mis, path.accumulate, path.rr, path.rr_depth, "
+                "path.rr_probability, path.microfacet)",
+                [](const ParamSet& p) { return std::make_unique<PathIntegrator>(p); }},
+          Entry{"direct",
+                "zero plus one bounce: light importance sampling, or uniform hemisphere "
+                "sampling with -H (direct.microfacet)",
+                [](const ParamSet& p) { return std::make_unique<DirectIntegrator>(p); }},
+          Entry{"ao", "ambient occlusion at the first hit (ao.samples, ao.max_distance)",
+                [](const ParamSet& p) { return std::make_unique<AoIntegrator>(p); }},
+          Entry{"normals",
+                "shading normal n of the first hit as colour 0.5 n + 0.5; black background",
+                [](const ParamSet&) { return std::make_unique<NormalsIntegrator>(); }},
+          Entry{"depth", "distance to the first hit as grey; 0 where the ray escapes",
+                [](const ParamSet&) { return std::make_unique<DepthIntegrator>(); }},
+      });
+  return registry;
+}
+
+}  // namespace prism

@@ -1,0 +1,152 @@
+#include "integrators/light_transport.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "integrators/sampling/warp.h"
+
+namespace prism {
+namespace {
+
+/// Shadow rays stop this fraction short of the light point, so they do not hit the emitter.
+constexpr float kShadowEpsilon = 1e-4f;
+
+}  // namespace
+
+ShadingContext::ShadingContext(const RenderContext& context, const BsdfOptions& options)
+    : bsdfs(make_bsdfs(context.scene.materials, options)),
+      lights(context.scene, context.environment, context.camera.up) {}
+
+ShadingPoint::ShadingPoint(const SurfaceInteraction& si_in, const Ray& ray, const Bsdf& bsdf_in)
+    : si(si_in),
+      frame(Frame::from_z(si_in.shading_normal)),
+      bsdf(&bsdf_in),
+      wo_world(-glm::normalize(ray.direction)),
+      wo(frame.to_local(wo_world)) {}
+
+namespace {
+
+/// Whether the world-space pair (wo, wi) is a reflection with respect to the geometric normal
+/// and agrees with the same classification in the shading frame.
+bool sides_agree(const ShadingPoint& sp, const Vec3& wi_world, const Vec3& wi_local) {
+  const float geometric =
+      glm::dot(sp.wo_world, sp.si.geometric_normal) * glm::dot(wi_world, sp.si.geometric_normal);
+  const float shading = sp.wo.z * wi_local.z;
+  return (geometric > 0.0f) == (shading > 0.0f) && geometric != 0.0f && shading != 0.0f;
+}
+
+}  // namespace
+
+Rgb ShadingPoint::eval_cos(const Vec3& wi_world) const {
+  const Vec3 wi = frame.to_local(wi_world);
+  if (!sides_agree(*this, wi_world, wi)) return Rgb(0.0f);
+  return bsdf->eval(wo, wi) * std::abs(wi.z);
+}
+
+float ShadingPoint::pdf(const Vec3& wi_world) const {
+  const Vec3 wi = frame.to_local(wi_world);
+  if (!sides_agree(*this, wi_world, wi)) return 0.0f;
+  return bsdf->pdf(wo, wi);
+}
+
+std::optional<BsdfSample> ShadingPoint::sample(float u_lobe, Vec2 u) const {
+  std::optional<BsdfSample> s = bsdf->sample(wo, u_lobe, u);
+  if (!s || !(s->pdf > 0.0f)) return std::nullopt;
+  const Vec3 wi_world = glm::normalize(frame.to_world(s->wi));
+  if (!sides_agree(*this, wi_world, s->wi)) return std::nullopt;
+  s->wi = wi_world;
+  return s;
+}
+
+Ray ShadingPoint::spawn(const Vec3& wi_world) const {
+  Ray r;
+  r.origin = offset_ray_origin(si.position, si.geometric_normal, wi_world);
+  r.direction = wi_world;
+  r.tmin = 0.0f;
+  r.tmax = kInfinity;
+  return r;
+}
+
+bool ShadingPoint::unoccluded(const Accelerator& accel, const Vec3& wi_world,
+                              float distance) const {
+  Ray r = spawn(wi_world);
+  if (std::isfinite(distance)) {
+    // Aim at the light point itself from the offset origin and stop just short of it.
+    const Vec3 target = si.position + distance * wi_world;
+    r.direction = target - r.origin;
+    r.tmax = 1.0f - kShadowEpsilon;
+  }
+  return !accel.occluded(r);
+}
+
+Rgb emitted_radiance(const SurfaceInteraction& si, const Ray& ray, const ShadingContext& shading) {
+  const LightSource* light = shading.lights.surface_light(si);
+  if (!light) return Rgb(0.0f);
+  return light->le(si, -glm::normalize(ray.direction));
+}
+
+Rgb estimate_direct_lights(const ShadingPoint& sp, Sampler& sampler, const RenderContext& context,
+                           const ShadingContext& shading) {
+  Rgb sum(0.0f);
+  const int area_samples = std::max(1, context.light_samples);
+  for (const auto& light : shading.lights.lights()) {
+    const int n = light->is_delta() ? 1 : area_samples;
+    Rgb light_sum(0.0f);
+    for (int i = 0; i < n; ++i) {
+      const Vec2 u = sampler.get_2d();
+      const std::optional<LightLiSample> ls = light->sample_li(sp.si.position, u);
+      if (!ls || !(ls->pdf > 0.0f)) continue;
+      const Rgb f = sp.eval_cos(ls->wi);
+      if (max_component(f) <= 0.0f) continue;
+      if (!sp.unoccluded(context.accel, ls->wi, ls->distance)) continue;
+      light_sum += f * ls->li / ls->pdf;
+    }
+    sum += light_sum / float(n);
+  }
+  return sum;
+}
+
+Rgb estimate_direct_hemisphere(const ShadingPoint& sp, Sampler& sampler,
+                               const RenderContext& context, const ShadingContext& shading) {
+  const int n = std::max(1, context.light_samples) * std::max<int>(1, int(shading.lights.size()));
+  const float side = sp.wo.z < 0.0f ? -1.0f : 1.0f;
+  Rgb sum(0.0f);
+  for (int i = 0; i < n; ++i) {
+    Vec3 wi = square_to_uniform_hemisphere(sampler.get_2d());
+    wi.z *= side;
+    const Vec3 wi_world = glm::normalize(sp.frame.to_world(wi));
+    const Rgb f = sp.eval_cos(wi_world);
+    if (max_component(f) <= 0.0f) continue;
+    const Ray ray = sp.spawn(wi_world);
+    const std::optional<Hit> hit = context.accel.intersect(ray);
+    Rgb le(0.0f);
+    if (hit) {
+      le = emitted_radiance(context.scene.surface_at(ray, *hit), ray, shading);
+    } else {
+      le = shading.lights.le_escaped(wi_world);
+    }
+    sum += f * le / uniform_hemisphere_pdf();
+  }
+  return sum / float(n);
+}
+
+LightTransportIntegrator::LightTransportIntegrator(const std::string& name,
+                                                   const ParamSet& params) {
+  const std::string model = params.get_string(name + ".microfacet", "beckmann");
+  if (model == "beckmann") {
+    bsdf_options_.microfacet = MicrofacetModel::kBeckmann;
+  } else if (model == "ggx") {
+    bsdf_options_.microfacet = MicrofacetModel::kGgx;
+  } else {
+    throw Error(ErrorKind::kUsage,
+                "bad value '" + model + "' for " + name + ".microfacet; expected beckmann or ggx");
+  }
+}
+
+void LightTransportIntegrator::begin_render(const RenderContext& context) const {
+  shading_ = std::make_unique<ShadingContext>(context, bsdf_options_);
+}
+
+void LightTransportIntegrator::end_render() const { shading_.reset(); }
+
+}  // namespace prism

@@ -1,0 +1,82 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/param_set.h"
+#include "integrators/bsdf/bsdf.h"
+#include "integrators/bsdf/bsdf_factory.h"
+#include "integrators/integrator.h"
+#include "integrators/lights/light_set.h"
+#include "integrators/sampling/frame.h"
+
+namespace prism {
+
+/// Per-render shading state of the light-transport integrators: one BSDF per material and the
+/// scene's lights. Built once per render from the Scene, read-only afterwards.
+struct ShadingContext {
+  ShadingContext(const RenderContext& context, const BsdfOptions& options);
+  std::vector<std::unique_ptr<Bsdf>> bsdfs;
+  LightSet lights;
+};
+
+/// A surface hit ready for shading: the shading frame from the shading normal, the BSDF, and
+/// wo. World-space helpers apply the leak check with the geometric normal: a direction pair is
+/// treated as reflection or transmission by its sides of the geometric surface, and a BSDF
+/// lobe that disagrees contributes nothing.
+struct ShadingPoint {
+  ShadingPoint(const SurfaceInteraction& si, const Ray& ray, const Bsdf& bsdf);
+
+  SurfaceInteraction si;
+  Frame frame;
+  const Bsdf* bsdf;
+  Vec3 wo_world;  ///< unit, toward the previous vertex
+  Vec3 wo;        ///< wo_world in the shading frame
+
+  /// f(wo, wi) |cos theta_i| for a unit world direction wi (0 where the leak check fails).
+  Rgb eval_cos(const Vec3& wi_world) const;
+  /// BSDF sampling density of the unit world direction wi.
+  float pdf(const Vec3& wi_world) const;
+  /// A BSDF sample with wi in world space; nothing when it fails or fails the leak check.
+  std::optional<BsdfSample> sample(float u_lobe, Vec2 u) const;
+  /// A ray leaving the surface along the unit world direction `wi`.
+  Ray spawn(const Vec3& wi_world) const;
+  /// Whether nothing blocks the segment to the point `distance` along wi (kInfinity: the ray
+  /// escapes the scene).
+  bool unoccluded(const Accelerator& accel, const Vec3& wi_world, float distance) const;
+};
+
+/// The homework's one-bounce estimator at `sp` by light importance sampling: every light,
+/// `light_samples` samples for each non-delta light and one for each delta light.
+Rgb estimate_direct_lights(const ShadingPoint& sp, Sampler& sampler, const RenderContext& context,
+                           const ShadingContext& shading);
+
+/// The homework's one-bounce estimator at `sp` by uniform hemisphere sampling (on wo's side):
+/// light_samples x (number of lights, at least 1) rays; light arrives only from emissive
+/// geometry hit and from infinite lights on escape.
+Rgb estimate_direct_hemisphere(const ShadingPoint& sp, Sampler& sampler,
+                               const RenderContext& context, const ShadingContext& shading);
+
+/// Radiance emitted toward the previous vertex by the surface at `si` hit by `ray` (0 unless
+/// it is an emissive-surface light).
+Rgb emitted_radiance(const SurfaceInteraction& si, const Ray& ray, const ShadingContext& shading);
+
+/// Base of the integrators that shade surfaces: builds the ShadingContext per render and
+/// reads `<name>.microfacet` (beckmann | ggx) from the parameters.
+class LightTransportIntegrator : public PixelIntegrator {
+ public:
+  LightTransportIntegrator(const std::string& name, const ParamSet& params);
+
+ protected:
+  void begin_render(const RenderContext& context) const override;
+  void end_render() const override;
+  /// Valid between begin_render() and end_render().
+  const ShadingContext& shading() const { return *shading_; }
+
+ private:
+  BsdfOptions bsdf_options_;
+  mutable std::unique_ptr<ShadingContext> shading_;
+};
+
+}  // namespace prism

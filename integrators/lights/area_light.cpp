@@ -1,0 +1,134 @@
+#include "integrators/lights/area_light.h"
+
+#include <cmath>
+
+#include "integrators/sampling/warp.h"
+
+namespace prism {
+
+float area_to_solid_angle_pdf(float pdf_area, float distance, float cos_light) {
+  const float c = std::abs(cos_light);
+  if (!(c > 0.0f) || !(distance > 0.0f)) return 0.0f;
+  const float pdf = pdf_area * distance * distance / c;
+  return std::isfinite(pdf) ? pdf : 0.0f;
+}
+
+namespace {
+
+/// The sample toward light point `q` with normal `n` (emitting side) from `p`.
+std::optional<LightLiSample> toward_point(const Vec3& p, const Vec3& q, const Vec3& n,
+                                          float pdf_area, const Rgb& radiance) {
+  const Vec3 d = q - p;
+  const float distance = glm::length(d);
+  if (!(distance > 0.0f)) return std::nullopt;
+  LightLiSample s;
+  s.wi = d / distance;
+  const float cos_light = glm::dot(n, -s.wi);
+  if (cos_light <= 0.0f) return std::nullopt;  // the back of a one-sided emitter
+  s.pdf = area_to_solid_angle_pdf(pdf_area, distance, cos_light);
+  if (s.pdf <= 0.0f) return std::nullopt;
+  s.distance = distance;
+  s.li = radiance;
+  return s;
+}
+
+}  // namespace
+
+ParallelogramLight::ParallelogramLight(const Light& light)
+    : radiance_(light.color),
+      corner_(light.position - 0.5f * (light.edge_u + light.edge_v)),
+      edge_u_(light.edge_u),
+      edge_v_(light.edge_v),
+      normal_(glm::normalize(light.direction)),
+      area_(glm::length(glm::cross(light.edge_u, light.edge_v))) {}
+
+std::optional<LightLiSample> ParallelogramLight::sample_li(const Vec3& p, Vec2 u) const {
+  if (!(area_ > 0.0f)) return std::nullopt;
+  const Vec3 q = corner_ + u.x * edge_u_ + u.y * edge_v_;
+  return toward_point(p, q, normal_, 1.0f / area_, radiance_);
+}
+
+Rgb ParallelogramLight::power() const { return kPi * area_ * radiance_; }
+
+MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance)
+    : mesh_(mesh), radiance_(radiance) {
+  std::vector<float> areas(mesh.triangles.size());
+  normals_.resize(mesh.triangles.size());
+  double total = 0.0;
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const glm::uvec3 t = mesh.triangles[i];
+    const Vec3 c = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                              mesh.positions[t.z] - mesh.positions[t.x]);
+    const float len = glm::length(c);
+    areas[i] = 0.5f * len;
+    total += areas[i];
+    Vec3 n = len > 0.0f ? c / len : Vec3(0.0f, 0.0f, 1.0f);
+    // Same orientation rule as Scene::surface_at(): authored normals decide the side.
+    if (!mesh.normals.empty()) {
+      const Vec3 ns = mesh.normals[3 * i] + mesh.normals[3 * i + 1] + mesh.normals[3 * i + 2];
+      if (glm::dot(ns, n) < 0.0f) n = -n;
+    }
+    normals_[i] = n;
+  }
+  area_ = float(total);
+  triangles_ = DiscreteDistribution(areas);
+}
+
+std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
+  if (!(area_ > 0.0f) || triangles_.empty()) return std::nullopt;
+  float u_remapped = 0.0f;
+  const size_t i = triangles_.sample(u.x, nullptr, &u_remapped);
+  const Vec2 b = square_to_uniform_triangle({u_remapped, u.y});
+  const glm::uvec3 t = mesh_.triangles[i];
+  const Vec3 q = (1.0f - b.x - b.y) * mesh_.positions[t.x] + b.x * mesh_.positions[t.y] +
+                 b.y * mesh_.positions[t.z];
+  return toward_point(p, q, normals_[i], 1.0f / area_, radiance_);
+}
+
+float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const {
+  if (!(area_ > 0.0f)) return 0.0f;
+  const Vec3 d = light_hit.position - p;
+  const float distance = glm::length(d);
+  if (!(distance > 0.0f)) return 0.0f;
+  // sample_li() never returns points seen from behind: their density is 0.
+  const float cos_light = glm::dot(light_hit.geometric_normal, -d / distance);
+  if (cos_light <= 0.0f) return 0.0f;
+  return area_to_solid_angle_pdf(1.0f / area_, distance, cos_light);
+}
+
+Rgb MeshLight::le(const SurfaceInteraction& light_hit, const Vec3& wo) const {
+  return glm::dot(light_hit.geometric_normal, wo) > 0.0f ? radiance_ : Rgb(0.0f);
+}
+
+Rgb MeshLight::power() const { return kPi * area_ * radiance_; }
+
+SphereLight::SphereLight(const Sphere& sphere, const Rgb& radiance)
+    : sphere_(sphere), radiance_(radiance) {}
+
+std::optional<LightLiSample> SphereLight::sample_li(const Vec3& p, Vec2 u) const {
+  const float area = 4.0f * kPi * sphere_.radius * sphere_.radius;
+  if (!(area > 0.0f)) return std::nullopt;
+  const Vec3 n = square_to_uniform_sphere(u);
+  return toward_point(p, sphere_.center + sphere_.radius * n, n, 1.0f / area, radiance_);
+}
+
+float SphereLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const {
+  const float area = 4.0f * kPi * sphere_.radius * sphere_.radius;
+  if (!(area > 0.0f)) return 0.0f;
+  const Vec3 d = light_hit.position - p;
+  const float distance = glm::length(d);
+  if (!(distance > 0.0f)) return 0.0f;
+  const float cos_light = glm::dot(light_hit.geometric_normal, -d / distance);
+  if (cos_light <= 0.0f) return 0.0f;
+  return area_to_solid_angle_pdf(1.0f / area, distance, cos_light);
+}
+
+Rgb SphereLight::le(const SurfaceInteraction& light_hit, const Vec3& wo) const {
+  return glm::dot(light_hit.geometric_normal, wo) > 0.0f ? radiance_ : Rgb(0.0f);
+}
+
+Rgb SphereLight::power() const {
+  return kPi * 4.0f * kPi * sphere_.radius * sphere_.radius * radiance_;
+}
+
+}  // namespace prism

@@ -1,0 +1,69 @@
+#pragma once
+
+#include <vector>
+
+#include "core/light.h"
+#include "core/scene.h"
+#include "integrators/lights/light_source.h"
+#include "integrators/sampling/distribution.h"
+
+namespace prism {
+
+/// The CGL area light: a one-sided parallelogram of radiance `color` emitting along
+/// `direction`, not part of the scene geometry (no ray ever hits it). Sampled uniformly in
+/// area.
+class ParallelogramLight final : public LightSource {
+ public:
+  explicit ParallelogramLight(const Light& light);
+  LightKind kind() const override { return LightKind::kArea; }
+  std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
+  Rgb power() const override;
+
+ private:
+  Rgb radiance_;
+  Vec3 corner_, edge_u_, edge_v_;
+  Vec3 normal_;  ///< emitting side
+  float area_;
+};
+
+/// An emissive triangle mesh as one area light: one-sided diffuse emission of `radiance` on
+/// the side of each triangle's geometric normal as Scene::surface_at() orients it. Sampled by
+/// choosing a triangle by area and a point uniformly on it.
+class MeshLight final : public LightSource {
+ public:
+  MeshLight(const TriangleMesh& mesh, const Rgb& radiance);
+  LightKind kind() const override { return LightKind::kSurface; }
+  std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
+  float pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const override;
+  Rgb le(const SurfaceInteraction& light_hit, const Vec3& wo) const override;
+  Rgb power() const override;
+  float area() const { return area_; }
+
+ private:
+  const TriangleMesh& mesh_;
+  Rgb radiance_;
+  DiscreteDistribution triangles_;
+  std::vector<Vec3> normals_;  ///< per triangle: unit emitting-side normal
+  float area_ = 0.0f;
+};
+
+/// An emissive sphere as an area light emitting outward; sampled uniformly in area.
+class SphereLight final : public LightSource {
+ public:
+  SphereLight(const Sphere& sphere, const Rgb& radiance);
+  LightKind kind() const override { return LightKind::kSurface; }
+  std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
+  float pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const override;
+  Rgb le(const SurfaceInteraction& light_hit, const Vec3& wo) const override;
+  Rgb power() const override;
+
+ private:
+  Sphere sphere_;
+  Rgb radiance_;
+};
+
+/// Converts an area density at a light point (distance `d`, |cos| at the light `cos_light`)
+/// to a solid-angle density at the reference point; 0 when the conversion is degenerate.
+float area_to_solid_angle_pdf(float pdf_area, float distance, float cos_light);
+
+}  // namespace prism

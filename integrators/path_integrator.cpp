@@ -1,0 +1,140 @@
+#include "integrators/path_integrator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/sampling/warp.h"
+
+namespace prism {
+
+PathIntegrator::PathIntegrator(const ParamSet& params)
+    : LightTransportIntegrator("path", params),
+      mis_(params.get_bool("path.mis", true)),
+      accumulate_(params.get_bool("path.accumulate", true)),
+      russian_roulette_(params.get_bool("path.rr", true)),
+      rr_probability_(float(params.get_float("path.rr_probability", 0.0, 0.0, 1.0))) {
+  rr_depth_ = int(params.get_int("path.rr_depth", rr_probability_ > 0.0f ? 1 : 3, 0, 1 << 20));
+}
+
+Rgb PathIntegrator::li(const Ray& ray, Sampler& sampler, const RenderContext& context) const {
+  AovSample aovs;
+  return li_aov(ray, sampler, context, aovs);
+}
+
+Rgb PathIntegrator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler,
+                                      const RenderContext& context,
+                                      const ShadingContext& shading) const {
+  const int n = std::max(1, context.light_samples);
+  Rgb sum(0.0f);
+  for (int i = 0; i < n; ++i) {
+    const float u_light = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    float pmf = 0.0f;
+    const LightSource* light = shading.lights.sample(u_light, &pmf);
+    if (!light || !(pmf > 0.0f)) continue;
+    const std::optional<LightLiSample> ls = light->sample_li(sp.si.position, u);
+    if (!ls || !(ls->pdf > 0.0f)) continue;
+    const Rgb f = sp.eval_cos(ls->wi);
+    if (max_component(f) <= 0.0f) continue;
+    if (!sp.unoccluded(context.accel, ls->wi, ls->distance)) continue;
+    const float light_pdf = pmf * ls->pdf;
+    // Only lights that BSDF-sampled rays can find compete with BSDF sampling.
+    const float weight =
+        light->is_hittable() ? power_heuristic(float(n), light_pdf, 1.0f, sp.pdf(ls->wi)) : 1.0f;
+    sum += f * ls->li * (weight / light_pdf);
+  }
+  return sum / float(n);
+}
+
+Rgb PathIntegrator::li_aov(const Ray& camera_ray, Sampler& sampler, const RenderContext& context,
+                           AovSample& aovs) const {
+  const ShadingContext& shading = this->shading();
+  const int max_depth = std::max(0, context.max_depth);
+  const float nee_samples = float(std::max(1, context.light_samples));
+  Rgb radiance(0.0f);
+  // Adds light that scattered `bounces` times before reaching the camera.
+  const auto add = [&](const Rgb& contribution, int bounces) {
+    if (accumulate_ || bounces == max_depth) radiance += contribution;
+  };
+
+  Ray ray = camera_ray;
+  Rgb beta(1.0f);
+  float eta_scale = 1.0f;  // radiance scaling by refraction, undone for Russian roulette
+  bool specular = true;    // the camera "bounce" counts as specular: emission seen in full
+  float bsdf_pdf = 0.0f;
+  Vec3 previous_position = ray.origin;
+  for (int bounces = 0;; ++bounces) {
+    const std::optional<Hit> hit = context.accel.intersect(ray);
+    if (!hit) {
+      const Vec3 w = glm::normalize(ray.direction);
+      for (const LightSource* light : shading.lights.infinite_lights()) {
+        const Rgb le = light->le_escaped(w);
+        if (max_component(le) <= 0.0f) continue;
+        if (specular) {
+          add(beta * le, bounces);
+        } else if (mis_) {
+          const float light_pdf =
+              shading.lights.pmf(shading.lights.index_of(light)) * light->pdf_li_escaped(w);
+          add(beta * le * power_heuristic(1.0f, bsdf_pdf, nee_samples, light_pdf), bounces);
+        }
+      }
+      break;
+    }
+    const SurfaceInteraction si = context.scene.surface_at(ray, *hit);
+    const Bsdf& bsdf = *shading.bsdfs[si.material_id];
+    if (bounces == 0) {
+      aovs.albedo = bsdf.albedo();
+      aovs.normal = si.shading_normal;
+      aovs.depth = hit->t * glm::length(ray.direction);
+    }
+    if (const LightSource* light = shading.lights.surface_light(si)) {
+      const Rgb le = light->le(si, -glm::normalize(ray.direction));
+      if (max_component(le) > 0.0f) {
+        if (specular) {
+          add(beta * le, bounces);
+        } else if (mis_) {
+          const float light_pdf = shading.lights.pmf(shading.lights.index_of(light)) *
+                                  light->pdf_li(previous_position, si);
+          add(beta * le * power_heuristic(1.0f, bsdf_pdf, nee_samples, light_pdf), bounces);
+        }
+      }
+    }
+    if (bounces >= max_depth || bsdf.is_black()) break;
+
+    const ShadingPoint sp(si, ray, bsdf);
+    if (!bsdf.is_delta() && (accumulate_ || bounces + 1 == max_depth)) {
+      Rgb direct;
+      if (mis_) {
+        direct = sample_lights_mis(sp, sampler, context, shading);
+      } else if (context.hemisphere_sampling) {
+        direct = estimate_direct_hemisphere(sp, sampler, context, shading);
+      } else {
+        direct = estimate_direct_lights(sp, sampler, context, shading);
+      }
+      add(beta * direct, bounces + 1);
+    }
+
+    const float u_lobe = sampler.get_1d();
+    const std::optional<BsdfSample> bs = sp.sample(u_lobe, sampler.get_2d());
+    if (!bs) break;
+    beta *= bs->f * (std::abs(glm::dot(bs->wi, si.shading_normal)) / bs->pdf);
+    if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
+    specular = bs->is_delta();
+    bsdf_pdf = bs->pdf;
+    previous_position = si.position;
+    ray = sp.spawn(bs->wi);
+    if (!is_finite(beta) || max_component(beta) <= 0.0f) break;
+
+    if (russian_roulette_ && bounces + 1 >= rr_depth_) {
+      const float q = rr_probability_ > 0.0f ? rr_probability_
+                                             : std::min(1.0f, max_component(beta * eta_scale));
+      if (q < 1.0f) {
+        if (sampler.get_1d() >= q) break;
+        beta /= q;
+      }
+    }
+  }
+  return radiance;
+}
+
+}  // namespace prism

@@ -1,0 +1,326 @@
+// Scenes with known radiance (after pbrt-v4's integrator tests), and estimators that must
+// agree with each other in mean: hemisphere vs light sampling, Russian roulette on/off, MIS
+// on/off, the sum of single bounces vs the accumulated image, emitters counted once.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "integrators/sampling/warp.h"
+#include "tests/integrators_test_scenes.h"
+
+namespace prism {
+namespace {
+
+using test::CornellOptions;
+using test::TestRender;
+
+/// A point light of intensity I at the centre of a closed diffuse sphere of radius R and
+/// albedo a: every wall point receives I / R^2 directly and pi L from the rest of the sphere,
+/// so L = a / pi (I / R^2 + pi L), L = a I / (pi R^2 (1 - a)).
+Scene point_light_in_sphere(float albedo, float radius, float intensity) {
+  Scene scene;
+  scene.source = "point light in a sphere";
+  test::add_material(scene, MaterialType::kDiffuse, Rgb(albedo), "wall");
+  scene.geometry.spheres.push_back(Sphere{Vec3(0.0f), radius, 0});
+  Light l;
+  l.type = LightType::kPoint;
+  l.color = Rgb(intensity);
+  l.position = Vec3(0.0f);
+  l.constant_attenuation = 0.0f;
+  l.linear_attenuation = 0.0f;
+  l.quadratic_attenuation = 1.0f;  // the inverse-square law
+  scene.lights.push_back(l);
+  scene.camera.position = Vec3(0.0f);
+  scene.camera.target = Vec3(1.0f, 0.2f, 0.1f);
+  scene.camera.up = Vec3(0.0f, 0.0f, 1.0f);
+  scene.camera.hfov_deg = 90.0f;
+  scene.camera.vfov_deg = 90.0f;
+  scene.geometry.finalize();
+  scene.validate();
+  return scene;
+}
+
+TEST(IntegratorsAnalytic, PointLightInSphereDirectIsExact) {
+  const float a = 0.5f, r = 2.0f, i = 3.0f;
+  const Scene scene = point_light_in_sphere(a, r, i);
+  TestRender settings;
+  settings.spp = 2;
+  const Image image = test::render_scene(scene, "direct", settings);
+  const float expected = a * kInvPi * i / (r * r);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      ASSERT_NEAR(image.at(x, y, 0), expected, 1e-4f * expected) << x << "," << y;
+    }
+  }
+}
+
+TEST(IntegratorsAnalytic, PointLightInSpherePathMatchesClosedForm) {
+  const float a = 0.5f, r = 2.0f, i = 3.0f;
+  const Scene scene = point_light_in_sphere(a, r, i);
+  const double expected = a * i / (kPi * r * r * (1.0 - a));
+  TestRender settings;
+  settings.spp = 32;
+  settings.max_depth = 200;  // Russian roulette ends the paths long before
+  for (const char* mis : {"true", "false"}) {
+    ParamSet params;
+    params.set("path.mis", mis);
+    const Image image = test::render_scene(scene, "path", params, settings);
+    const test::ImageMean m = test::image_mean(image, 1);
+    EXPECT_NEAR(m.mean, expected, 0.01 * expected) << "path.mis=" << mis;
+    // The estimate is also within its own error bars.
+    EXPECT_LT(std::abs(m.mean - expected), 4.5 * std::sqrt(m.variance) + 1e-6);
+  }
+}
+
+/// A unit diffuse sphere 4 units in front of the camera, nothing else.
+Scene one_diffuse_sphere(float albedo) {
+  Scene scene;
+  test::add_material(scene, MaterialType::kDiffuse, Rgb(albedo), "paint");
+  scene.geometry.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
+  scene.camera.position = Vec3(0.0f, 0.0f, 4.0f);
+  scene.camera.target = Vec3(0.0f);
+  scene.camera.hfov_deg = scene.camera.vfov_deg = 40.0f;
+  scene.geometry.finalize();
+  return scene;
+}
+
+/// A closed, tessellated unit sphere seen from its centre: a cap of triangles around -x emits
+/// `le` inward (an emissive mesh), the rest is diffuse with albedo a. In a sphere the form
+/// factor between any two wall elements is dA / (4 pi R^2), so every diffuse wall point has the
+/// same radiance L = a (le f_e + L f_d), L = a le f_e / (1 - a f_d), with f_e and f_d the
+/// emitting and diffuse fractions of the area.
+struct IntegratingSphere {
+  Scene scene;
+  double expected = 0.0;
+};
+
+IntegratingSphere integrating_sphere(float albedo, float le) {
+  IntegratingSphere out;
+  Scene& scene = out.scene;
+  scene.source = "integrating sphere";
+  const uint32_t wall = test::add_material(scene, MaterialType::kDiffuse, Rgb(albedo), "wall");
+  const uint32_t lamp = test::add_material(scene, MaterialType::kEmission, Rgb(le), "lamp");
+  TriangleMesh walls, cap;
+  walls.name = "walls";
+  walls.material_id = wall;
+  cap.name = "cap";
+  cap.material_id = lamp;
+  const int rings = 64, segments = 128;
+  const auto vertex = [&](int i, int j) {
+    const float theta = kPi * float(i) / rings, phi = 2.0f * kPi * float(j) / segments;
+    return Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+  };
+  double area_walls = 0.0, area_cap = 0.0;
+  const auto add = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    Vec3 p0 = a, p1 = b, p2 = c;
+    Vec3 n = glm::cross(p1 - p0, p2 - p0);
+    const double area = 0.5 * glm::length(n);
+    if (area <= 0.0) return;
+    // Inward winding: the emitting side faces the centre.
+    if (glm::dot(n, p0 + p1 + p2) > 0.0f) std::swap(p1, p2);
+    const Vec3 centre = glm::normalize(p0 + p1 + p2);
+    const bool emits = centre.x < -std::cos(radians(40.0f));
+    TriangleMesh& m = emits ? cap : walls;
+    const uint32_t base = uint32_t(m.positions.size());
+    m.positions.insert(m.positions.end(), {p0, p1, p2});
+    m.triangles.push_back({base, base + 1, base + 2});
+    (emits ? area_cap : area_walls) += area;
+  };
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < segments; ++j) {
+      const Vec3 a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1),
+                 d = vertex(i, j + 1);
+      add(a, b, c);
+      add(a, c, d);
+    }
+  }
+  scene.geometry.meshes = {walls, cap};
+  scene.camera.position = Vec3(0.0f);
+  scene.camera.target = Vec3(1.0f, 0.0f, 0.0f);
+  scene.camera.up = Vec3(0.0f, 0.0f, 1.0f);
+  scene.camera.hfov_deg = 60.0f;
+  scene.camera.vfov_deg = 60.0f;
+  scene.geometry.finalize();
+  scene.validate();
+  const double f_e = area_cap / (area_cap + area_walls);
+  out.expected = albedo * le * f_e / (1.0 - albedo * (1.0 - f_e));
+  return out;
+}
+
+TEST(IntegratorsAnalytic, IntegratingSphereMatchesClosedForm) {
+  const IntegratingSphere s = integrating_sphere(0.6f, 2.0f);
+  TestRender settings;
+  settings.width = settings.height = 16;
+  settings.spp = 32;
+  settings.max_depth = 200;
+  for (const char* mis : {"true", "false"}) {
+    ParamSet params;
+    params.set("path.mis", mis);
+    const Image image = test::render_scene(s.scene, "path", params, settings);
+    const test::ImageMean m = test::image_mean(image, 0);
+    EXPECT_NEAR(m.mean, s.expected, 0.01 * s.expected) << "path.mis=" << mis;
+  }
+}
+
+TEST(IntegratorsAnalytic, EmitterSeenDirectlyHasItsRadiance) {
+  // From inside the sphere looking at the cap: zero-bounce radiance is exactly le.
+  IntegratingSphere s = integrating_sphere(0.6f, 2.0f);
+  s.scene.camera.target = Vec3(-1.0f, 0.0f, 0.0f);
+  s.scene.camera.hfov_deg = s.scene.camera.vfov_deg = 30.0f;
+  TestRender settings;
+  settings.width = settings.height = 8;
+  settings.spp = 1;
+  settings.max_depth = 0;
+  const Image image = test::render_scene(s.scene, "path", settings);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) ASSERT_FLOAT_EQ(image.at(x, y, 0), 2.0f);
+  }
+}
+
+TEST(IntegratorsAnalytic, DiffuseSphereInAUniformEnvironment) {
+  // A convex diffuse object under uniform radiance 1 from every direction reflects a: the
+  // sphere's pixels have radiance a, the background 1 (a white furnace for the whole stack).
+  const float a = 0.6f;
+  Scene scene = one_diffuse_sphere(a);
+  Image environment;
+  environment.width = 16;
+  environment.height = 8;
+  environment.channel_names = {"R", "G", "B"};
+  environment.pixels.assign(16 * 8 * 3, 1.0f);
+  TestRender settings;
+  settings.width = settings.height = 16;
+  settings.spp = 64;
+  settings.max_depth = 3;
+  settings.environment = &environment;
+  // Mean radiance of the pixels well inside the silhouette; the background must be 1.
+  const auto sphere_mean = [](const Image& image) {
+    double sum = 0.0, n = 0.0;
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        if (image.at(x, y, Film::kDepthChannel) == 0.0f) {
+          EXPECT_FLOAT_EQ(image.at(x, y, 0), 1.0f);
+        } else if (image.at(x, y, Film::kNormalChannel + 2) > 0.5f) {
+          sum += image.at(x, y, 0);
+          n += 1.0;
+        }
+      }
+    }
+    EXPECT_GT(n, 10.0);
+    return sum / std::max(n, 1.0);
+  };
+  for (const char* integrator : {"direct", "path"}) {
+    for (const char* mis : {"true", "false"}) {
+      ParamSet params;
+      params.set("path.mis", mis);
+      const Image image = test::render_scene(scene, integrator, params, settings);
+      EXPECT_NEAR(sphere_mean(image), a, 0.01 * a) << integrator << " path.mis=" << mis;
+    }
+  }
+  TestRender hemisphere = settings;
+  hemisphere.hemisphere = true;
+  const Image image = test::render_scene(scene, "direct", hemisphere);
+  EXPECT_NEAR(sphere_mean(image), a, 0.01 * a) << "direct -H";
+}
+
+TEST(IntegratorsAnalytic, HemisphereAndLightSamplingAgree) {
+  const Scene scene = test::cornell_box({.spheres = true,
+                                         .sphere_material = MaterialType::kDiffuse,
+                                         .area_light = true,
+                                         .camera_below_light = true});
+  TestRender settings;
+  settings.spp = 16;
+  settings.light_samples = 4;
+  const Image importance = test::render_scene(scene, "direct", settings);
+  settings.hemisphere = true;
+  settings.spp = 64;
+  settings.light_samples = 16;  // 16 hemisphere rays per camera ray
+  settings.seed = 2;
+  const Image hemisphere = test::render_scene(scene, "direct", settings);
+  test::expect_same_mean(importance, hemisphere, 4.5, "direct: light vs hemisphere sampling");
+  // And the two are not trivially equal (both black, say).
+  EXPECT_GT(test::image_mean(importance, 0).mean, 0.05);
+}
+
+TEST(IntegratorsAnalytic, EmissiveMeshAndItsAreaLightCountOnce) {
+  TestRender settings;
+  settings.spp = 16;
+  settings.light_samples = 2;
+  CornellOptions o;
+  o.camera_on_floor = true;
+  o.area_light = true;  // flagged as the mesh's duplicate
+  const Image both = test::render_scene(test::cornell_box(o), "path", settings);
+  o.area_light = false;
+  const Image mesh_only = test::render_scene(test::cornell_box(o), "path", settings);
+  // The duplicate adds nothing at all: same samples, same image.
+  ASSERT_EQ(both.pixels.size(), mesh_only.pixels.size());
+  for (size_t i = 0; i < both.pixels.size(); ++i) ASSERT_EQ(both.pixels[i], mesh_only.pixels[i]);
+  // The area light alone (no emissive mesh) lights the floor just as much, not half as much.
+  o.light_mesh = false;
+  o.area_light = true;
+  o.area_duplicates_mesh = false;
+  settings.seed = 7;
+  const Image area_only = test::render_scene(test::cornell_box(o), "path", settings);
+  test::expect_same_mean(mesh_only, area_only, 4.5, "emissive mesh vs area light");
+}
+
+TEST(IntegratorsAnalytic, SumOfSingleBouncesIsTheAccumulatedImage) {
+  const Scene scene = test::cornell_box(
+      {.spheres = true, .sphere_material = MaterialType::kGlass, .camera_below_light = true});
+  TestRender settings;
+  settings.spp = 64;
+  settings.max_depth = 3;
+  const Image accumulated = test::render_scene(scene, "path", settings);
+  Image sum = accumulated;
+  std::fill(sum.pixels.begin(), sum.pixels.end(), 0.0f);
+  for (int m = 0; m <= settings.max_depth; ++m) {
+    TestRender single = settings;
+    single.max_depth = m;
+    single.seed = 100 + m;
+    ParamSet params;
+    params.set("path.accumulate", "false");
+    const Image image = test::render_scene(scene, "path", params, single);
+    // Radiance and variance add for independent renders.
+    for (size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += image.pixels[i];
+    if (m == 0) {
+      // Bounce 0 alone is the emitter seen directly: only the light quad is non-black.
+      EXPECT_LT(test::image_mean(image, 0).mean, test::image_mean(accumulated, 0).mean);
+    }
+  }
+  test::expect_same_mean(accumulated, sum, 4.5, "sum of bounces 0..3 vs accumulated");
+}
+
+TEST(IntegratorsAnalytic, RussianRouletteAndMisAreUnbiased) {
+  const Scene scene = test::cornell_box(
+      {.spheres = true, .sphere_material = MaterialType::kMicrofacet, .camera_below_light = true});
+  TestRender settings;
+  settings.spp = 32;
+  settings.max_depth = 6;
+  const Image reference = test::render_scene(scene, "path", settings);
+  struct Variant {
+    const char* key;
+    const char* value;
+  };
+  uint64_t seed = 50;
+  for (const Variant v : {Variant{"path.rr", "false"}, Variant{"path.mis", "false"},
+                          Variant{"path.rr_probability", "0.6"}}) {
+    ParamSet params;
+    params.set(v.key, v.value);
+    TestRender s = settings;
+    s.seed = ++seed;
+    const Image image = test::render_scene(scene, "path", params, s);
+    test::expect_same_mean(reference, image, 4.5, std::string(v.key) + "=" + v.value);
+  }
+  // Homework estimator with hemisphere sampling for its direct term.
+  ParamSet params;
+  params.set("path.mis", "false");
+  TestRender s = settings;
+  s.hemisphere = true;
+  s.spp = 64;
+  s.light_samples = 16;
+  s.seed = 99;
+  const Image hemisphere = test::render_scene(scene, "path", params, s);
+  test::expect_same_mean(reference, hemisphere, 4.5, "path.mis=false with -H");
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,306 @@
+// BSDFs: white furnace, chi-square goodness of fit of sampling against pdf, consistency of
+// sample() with eval()/pdf(), and the delta lobes' directions and probabilities.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/sampler.h"
+#include "integrators/bsdf/bsdf_factory.h"
+#include "integrators/bsdf/diffuse_bsdf.h"
+#include "integrators/bsdf/fresnel.h"
+#include "integrators/bsdf/glass_bsdf.h"
+#include "integrators/bsdf/microfacet_bsdf.h"
+#include "integrators/bsdf/mirror_bsdf.h"
+#include "integrators/sampling/chi_square.h"
+#include "integrators/sampling/warp.h"
+
+namespace prism {
+namespace {
+
+// Every chi-square test in this file and in integrators_light_test.cpp shares one family-wise
+// significance of 0.01 (Sidak), over at most this many tests.
+constexpr size_t kChiSquareTests = 64;
+const double kSignificance = sidak_significance(0.01, kChiSquareTests);
+
+Vec3 direction_at(float theta_deg, float phi_deg = 30.0f) {
+  const float t = radians(theta_deg), p = radians(phi_deg);
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+struct NamedBsdf {
+  std::string name;
+  std::shared_ptr<Bsdf> bsdf;
+};
+
+/// Perfect conductor: |k| huge makes the Fresnel term 1 at every angle.
+constexpr float kPerfectK = 1e4f;
+
+std::vector<NamedBsdf> glossy_bsdfs() {
+  std::vector<NamedBsdf> out;
+  out.push_back({"diffuse", std::make_shared<DiffuseBsdf>(Rgb(0.7f))});
+  for (MicrofacetModel model : {MicrofacetModel::kBeckmann, MicrofacetModel::kGgx}) {
+    for (float alpha : {0.2f, 0.5f, 0.8f}) {
+      const std::string name =
+          std::string(model == MicrofacetModel::kBeckmann ? "beckmann" : "ggx") +
+          " alpha=" + std::to_string(alpha);
+      out.push_back({name, std::make_shared<MicrofacetBsdf>(Rgb(0.2f, 0.9f, 1.4f),
+                                                            Rgb(3.9f, 2.4f, 2.2f), alpha, model)});
+    }
+  }
+  return out;
+}
+
+TEST(IntegratorsBsdf, SamplingMatchesPdfChiSquare) {
+  // Incident angles include a grazing one and one below the surface (opaque BSDFs are
+  // two-sided).
+  const float angles[] = {10.0f, 50.0f, 80.0f, 130.0f};
+  size_t tests = 0;
+  for (const NamedBsdf& b : glossy_bsdfs()) {
+    for (float theta : angles) {
+      const Vec3 wo = direction_at(theta);
+      const DirectionSampler sampler = [&](float u1, Vec2 u2) -> std::optional<Vec3> {
+        const auto s = b.bsdf->sample(wo, u1, u2);
+        if (!s) return std::nullopt;
+        return s->wi;
+      };
+      const DirectionPdf pdf = [&](const Vec3& wi) { return double(b.bsdf->pdf(wo, wi)); };
+      DirectionalChiSquareOptions options;
+      options.seed = 17 + tests;
+      const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
+      ++tests;
+      EXPECT_EQ(r.impossible_observations, 0u) << b.name << " theta_o=" << theta;
+      EXPECT_GT(r.p_value, kSignificance) << b.name << " theta_o=" << theta << ": " << r.summary();
+    }
+  }
+  EXPECT_LE(tests, kChiSquareTests / 2);
+}
+
+TEST(IntegratorsBsdf, SampleAgreesWithEvalAndPdf) {
+  IndependentSampler rng(5);
+  for (const NamedBsdf& b : glossy_bsdfs()) {
+    for (float theta : {20.0f, 70.0f, 160.0f}) {
+      const Vec3 wo = direction_at(theta, 100.0f);
+      for (uint32_t i = 0; i < 2000; ++i) {
+        rng.start_pixel_sample({0, 0}, i);
+        const float u1 = rng.get_1d();
+        const auto s = b.bsdf->sample(wo, u1, rng.get_2d());
+        if (!s) continue;
+        ASSERT_FALSE(s->is_delta());
+        ASSERT_NEAR(glm::length(s->wi), 1.0f, 1e-4f);
+        const float pdf = b.bsdf->pdf(wo, s->wi);
+        ASSERT_NEAR(s->pdf, pdf, 1e-3f * pdf) << b.name;
+        const Rgb f = b.bsdf->eval(wo, s->wi);
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(s->f[c], f[c], 1e-3f * f[c] + 1e-7f) << b.name;
+        // Reciprocity of the reflection BSDFs.
+        const Rgb g = b.bsdf->eval(s->wi, wo);
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(g[c], f[c], 2e-3f * f[c] + 1e-6f) << b.name;
+      }
+    }
+  }
+}
+
+/// Mean of f |cos| / pdf over sampled directions, with transmitted samples multiplied by eta^2
+/// (the radiance scaling of refraction is not energy lost or gained).
+double sampled_albedo(const Bsdf& bsdf, const Vec3& wo, uint32_t n, uint64_t seed,
+                      double* max_weight = nullptr) {
+  IndependentSampler rng(seed);
+  double sum = 0.0, largest = 0.0;
+  for (uint32_t i = 0; i < n; ++i) {
+    rng.start_pixel_sample({1, 2}, i);
+    const float u1 = rng.get_1d();
+    const auto s = bsdf.sample(wo, u1, rng.get_2d());
+    if (!s) continue;
+    double w = double(s->f.g) * std::abs(s->wi.z) / double(s->pdf);
+    if (s->is_transmission()) w *= double(s->eta) * double(s->eta);
+    sum += w;
+    largest = std::max(largest, w);
+  }
+  if (max_weight) *max_weight = largest;
+  return sum / n;
+}
+
+TEST(IntegratorsBsdf, WhiteFurnaceLosslessBsdfs) {
+  const DiffuseBsdf diffuse(Rgb(1.0f));
+  const MirrorBsdf mirror(Rgb(1.0f));
+  const GlassBsdf glass(Rgb(1.0f), Rgb(1.0f), 1.5f);
+  const RefractionBsdf refraction(Rgb(1.0f), 1.5f);
+  for (float theta : {0.0f, 30.0f, 60.0f, 85.0f, 120.0f, 175.0f}) {
+    const Vec3 wo = direction_at(theta);
+    for (const Bsdf* b : {static_cast<const Bsdf*>(&diffuse), static_cast<const Bsdf*>(&mirror),
+                          static_cast<const Bsdf*>(&glass)}) {
+      const double albedo = sampled_albedo(*b, wo, 20000, 3);
+      EXPECT_GE(albedo, 0.99) << "theta_o=" << theta;
+      EXPECT_LE(albedo, 1.01) << "theta_o=" << theta;
+    }
+    // Refraction only loses exactly the totally internally reflected directions (from inside,
+    // beyond the critical angle of asin(1/1.5) = 41.8 degrees off the -z axis).
+    const double albedo = sampled_albedo(refraction, wo, 20000, 3);
+    const bool tir = theta > 90.0f && (180.0f - theta) > 41.9f;
+    EXPECT_NEAR(albedo, tir ? 0.0 : 1.0, 0.01) << "theta_o=" << theta;
+  }
+}
+
+TEST(IntegratorsBsdf, WhiteFurnaceDiffuseByUniformSampling) {
+  // eval() alone, integrated by uniform sphere sampling (not the BSDF's own sampler).
+  const DiffuseBsdf diffuse(Rgb(1.0f));
+  IndependentSampler rng(9);
+  for (float theta : {10.0f, 70.0f, 150.0f}) {
+    const Vec3 wo = direction_at(theta);
+    double sum = 0.0;
+    const uint32_t n = 200000;
+    for (uint32_t i = 0; i < n; ++i) {
+      rng.start_pixel_sample({0, 1}, i);
+      const Vec3 wi = square_to_uniform_sphere(rng.get_2d());
+      sum += diffuse.eval(wo, wi).g * std::abs(wi.z) / uniform_sphere_pdf();
+    }
+    EXPECT_NEAR(sum / n, 1.0, 0.01) << "theta_o=" << theta;
+  }
+}
+
+TEST(IntegratorsBsdf, WhiteFurnaceMicrofacetNeverGainsEnergy) {
+  for (MicrofacetModel model : {MicrofacetModel::kBeckmann, MicrofacetModel::kGgx}) {
+    for (float alpha : {0.05f, 0.2f, 0.5f, 1.0f}) {
+      const MicrofacetBsdf conductor(Rgb(1.0f), Rgb(kPerfectK), alpha, model);
+      for (float theta : {0.0f, 30.0f, 60.0f, 80.0f, 89.0f, 150.0f}) {
+        const Vec3 wo = direction_at(theta);
+        const double albedo = sampled_albedo(conductor, wo, 20000, 11);
+        EXPECT_LE(albedo, 1.01) << "alpha=" << alpha << " theta_o=" << theta;
+        // Single scattering loses little energy on smooth surfaces seen from above (GGX's
+        // long tail loses ~5% already at alpha = 0.2: its facets reflect below the horizon).
+        const float smooth = model == MicrofacetModel::kBeckmann ? 0.2f : 0.05f;
+        if (alpha <= smooth && (theta <= 60.0f || theta >= 120.0f)) {
+          EXPECT_GE(albedo, 0.95) << "alpha=" << alpha << " theta_o=" << theta;
+        }
+      }
+    }
+  }
+}
+
+TEST(IntegratorsBsdf, MirrorReflectsExactly) {
+  const MirrorBsdf mirror(Rgb(0.5f, 0.6f, 0.7f));
+  const Vec3 wo = direction_at(40.0f);
+  const auto s = mirror.sample(wo, 0.3f, {0.1f, 0.9f});
+  ASSERT_TRUE(s);
+  EXPECT_TRUE(s->is_delta());
+  EXPECT_NEAR(s->wi.x, -wo.x, 1e-6f);
+  EXPECT_NEAR(s->wi.y, -wo.y, 1e-6f);
+  EXPECT_NEAR(s->wi.z, wo.z, 1e-6f);
+  EXPECT_NEAR(s->f.b * std::abs(s->wi.z) / s->pdf, 0.7f, 1e-6f);
+  EXPECT_EQ(mirror.eval(wo, s->wi), Rgb(0.0f));
+  EXPECT_EQ(mirror.pdf(wo, s->wi), 0.0f);
+  EXPECT_TRUE(mirror.is_delta());
+}
+
+TEST(IntegratorsBsdf, GlassChoosesLobesByFresnelAndObeysSnell) {
+  const float ior = 1.5f;
+  const GlassBsdf glass(Rgb(1.0f), Rgb(1.0f), ior);
+  IndependentSampler rng(21);
+  for (float theta : {0.0f, 45.0f, 80.0f, 150.0f, 170.0f}) {
+    const Vec3 wo = direction_at(theta);
+    const double fresnel = fresnel_dielectric(wo.z, ior);
+    const uint32_t n = 20000;
+    uint32_t reflected = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      rng.start_pixel_sample({3, 3}, i);
+      const float u1 = rng.get_1d();
+      const auto s = glass.sample(wo, u1, rng.get_2d());
+      ASSERT_TRUE(s);
+      ASSERT_TRUE(s->is_delta());
+      if (!s->is_transmission()) {
+        ++reflected;
+        ASSERT_NEAR(s->wi.z, wo.z, 1e-5f);
+        continue;
+      }
+      ASSERT_LT(s->wi.z * wo.z, 0.0f);
+      // Snell: eta_o sin(theta_o) = eta_i sin(theta_i).
+      const float eta_o = wo.z > 0.0f ? 1.0f : ior;
+      const float eta_i = wo.z > 0.0f ? ior : 1.0f;
+      const float sin_o = std::sqrt(std::max(0.0f, 1.0f - wo.z * wo.z));
+      const float sin_i = std::sqrt(std::max(0.0f, 1.0f - s->wi.z * s->wi.z));
+      ASSERT_NEAR(eta_o * sin_o, eta_i * sin_i, 1e-4f);
+      ASSERT_NEAR(s->eta, eta_i / eta_o, 1e-6f);
+      // Tangential directions are opposite (the refracted ray continues through).
+      ASSERT_LE(s->wi.x * wo.x + s->wi.y * wo.y, 1e-6f);
+    }
+    // Binomial z test of the reflection frequency against F.
+    const double p = double(reflected) / n;
+    const double sigma = std::sqrt(std::max(fresnel * (1.0 - fresnel), 1e-12) / n);
+    EXPECT_LT(std::abs(p - fresnel), 4.5 * sigma + 1e-9) << "theta_o=" << theta << " F=" << fresnel;
+  }
+}
+
+TEST(IntegratorsBsdf, TotalInternalReflection) {
+  const GlassBsdf glass(Rgb(1.0f), Rgb(1.0f), 1.5f);
+  const RefractionBsdf refraction(Rgb(1.0f), 1.5f);
+  const Vec3 wo = direction_at(180.0f - 60.0f);  // inside, 60 degrees off the normal
+  EXPECT_EQ(fresnel_dielectric(wo.z, 1.5f), 1.0f);
+  for (float u : {0.0f, 0.5f, 0.999f}) {
+    const auto s = glass.sample(wo, u, {0.5f, 0.5f});
+    ASSERT_TRUE(s);
+    EXPECT_FALSE(s->is_transmission());
+    EXPECT_FALSE(refraction.sample(wo, u, {0.5f, 0.5f}).has_value());
+  }
+}
+
+TEST(IntegratorsBsdf, FresnelLimits) {
+  // Normal incidence on glass: ((1 - 1.5) / (1 + 1.5))^2 = 0.04.
+  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.5f), 0.04f, 1e-6f);
+  EXPECT_NEAR(fresnel_dielectric(0.0f, 1.5f), 1.0f, 1e-6f);
+  // A conductor with k = 0 is a dielectric.
+  EXPECT_NEAR(fresnel_conductor(0.7f, Rgb(1.5f), Rgb(0.0f)).r, fresnel_dielectric(0.7f, 1.5f),
+              1e-5f);
+  // Gold-like values at normal incidence: ((n-1)^2 + k^2) / ((n+1)^2 + k^2).
+  const float n = 0.2f, k = 3.0f;
+  const float expected = ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k);
+  EXPECT_NEAR(fresnel_conductor(1.0f, Rgb(n), Rgb(k)).r, expected, 1e-5f);
+}
+
+TEST(IntegratorsBsdf, MicrofacetDistributionsAreNormalised) {
+  // Integral of D(h) cos(theta_h) over the hemisphere is 1, and Smith G is in [0, 1].
+  for (MicrofacetModel model : {MicrofacetModel::kBeckmann, MicrofacetModel::kGgx}) {
+    for (float alpha : {0.1f, 0.4f, 0.9f}) {
+      const MicrofacetDistribution d(model, alpha);
+      double sum = 0.0;
+      const int n = 2000;
+      for (int i = 0; i < n; ++i) {
+        // Midpoint rule in (cos theta, phi); isotropic, so phi integrates to 2 pi.
+        const double z = (i + 0.5) / n;
+        const Vec3 h(float(std::sqrt(1.0 - z * z)), 0.0f, float(z));
+        sum += double(d.d(h)) * z * (1.0 / n) * 2.0 * 3.141592653589793;
+      }
+      // GGX has a heavy tail near the horizon: allow for the midpoint rule's error there.
+      EXPECT_NEAR(sum, 1.0, 0.01) << int(model) << " alpha=" << alpha;
+      for (float theta : {0.0f, 45.0f, 89.0f}) {
+        const float g = d.g(direction_at(theta), direction_at(30.0f, 200.0f));
+        EXPECT_GE(g, 0.0f);
+        EXPECT_LE(g, 1.0f);
+      }
+    }
+  }
+}
+
+TEST(IntegratorsBsdf, FactoryBuildsEveryMaterialType) {
+  Material m;
+  for (MaterialType t :
+       {MaterialType::kDiffuse, MaterialType::kMirror, MaterialType::kGlass,
+        MaterialType::kRefraction, MaterialType::kMicrofacet, MaterialType::kEmission}) {
+    m.type = t;
+    const auto b = make_bsdf(m);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->is_black(), t == MaterialType::kEmission);
+    EXPECT_EQ(b->is_delta(), t == MaterialType::kMirror || t == MaterialType::kGlass ||
+                                 t == MaterialType::kRefraction);
+    const Rgb a = material_albedo(m);
+    EXPECT_EQ(a, b->albedo());
+  }
+  m.type = MaterialType::kGlass;
+  m.ior = -1.0f;
+  EXPECT_THROW(make_bsdf(m), Error);
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,345 @@
+// Lights: chi-square goodness of fit of sample_li() against pdf_li(), the values of delta
+// lights, and the light set (selection by power, emissive meshes counted once).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+
+#include "core/error.h"
+#include "core/sampler.h"
+#include "integrators/lights/area_light.h"
+#include "integrators/lights/environment_light.h"
+#include "integrators/lights/light_set.h"
+#include "integrators/lights/point_light.h"
+#include "integrators/sampling/chi_square.h"
+#include "integrators/sampling/warp.h"
+
+namespace prism {
+namespace {
+
+constexpr size_t kChiSquareTests = 64;  // shared with integrators_bsdf_test.cpp
+const double kSignificance = sidak_significance(0.01, kChiSquareTests);
+
+/// Nearest intersection of a ray with a triangle (Moller-Trumbore), or nothing.
+std::optional<float> hit_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b,
+                                  const Vec3& c) {
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 p = glm::cross(d, e2);
+  const float det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-12f) return std::nullopt;
+  const Vec3 s = o - a;
+  const float u = glm::dot(s, p) / det;
+  if (u < 0.0f || u > 1.0f) return std::nullopt;
+  const Vec3 q = glm::cross(s, e1);
+  const float v = glm::dot(d, q) / det;
+  if (v < 0.0f || u + v > 1.0f) return std::nullopt;
+  const float t = glm::dot(e2, q) / det;
+  return t > 0.0f ? std::optional<float>(t) : std::nullopt;
+}
+
+TriangleMesh tilted_quad() {
+  TriangleMesh mesh;
+  mesh.name = "emitter";
+  // A 1 x 0.5 quad above the origin, tilted, wound so that its normal faces down-ish.
+  mesh.positions = {
+      {-0.5f, -0.25f, 2.0f}, {0.5f, -0.25f, 2.3f}, {0.5f, 0.25f, 2.3f}, {-0.5f, 0.25f, 2.0f}};
+  mesh.triangles = {{0, 2, 1}, {0, 3, 2}};
+  mesh.finalize();
+  return mesh;
+}
+
+TEST(IntegratorsLight, MeshLightSamplingMatchesPdf) {
+  const TriangleMesh mesh = tilted_quad();
+  const MeshLight light(mesh, Rgb(2.0f));
+  for (const Vec3& p : {Vec3(0.0f), Vec3(1.5f, -0.5f, 0.5f)}) {
+    const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+      const auto s = light.sample_li(p, u);
+      if (!s) return std::nullopt;
+      return s->wi;
+    };
+    const DirectionPdf pdf = [&](const Vec3& w) -> double {
+      for (const glm::uvec3& t : mesh.triangles) {
+        const auto hit =
+            hit_triangle(p, w, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
+        if (!hit) continue;
+        SurfaceInteraction si;
+        si.position = p + *hit * w;
+        si.geometric_normal = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                                        mesh.positions[t.z] - mesh.positions[t.x]));
+        return light.pdf_li(p, si);
+      }
+      return 0.0;
+    };
+    DirectionalChiSquareOptions options;
+    options.theta_bins = 40;  // the light subtends a small solid angle
+    options.phi_bins = 80;
+    const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
+    EXPECT_EQ(r.impossible_observations, 0u);
+    EXPECT_GT(r.p_value, kSignificance) << r.summary();
+  }
+}
+
+TEST(IntegratorsLight, SphereLightSamplingMatchesPdf) {
+  const Sphere sphere{Vec3(0.3f, 0.2f, 1.5f), 0.6f, 0};
+  const SphereLight light(sphere, Rgb(1.0f));
+  const Vec3 p(0.0f);
+  const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+    const auto s = light.sample_li(p, u);
+    if (!s) return std::nullopt;
+    return s->wi;
+  };
+  const DirectionPdf pdf = [&](const Vec3& w) -> double {
+    // Nearest hit with the sphere from outside: the visible cap is what sample_li() yields.
+    const Vec3 oc = p - sphere.center;
+    const float b = glm::dot(oc, w);
+    const float c = glm::dot(oc, oc) - sphere.radius * sphere.radius;
+    const float disc = b * b - c;
+    if (disc < 0.0f) return 0.0;
+    const float t = -b - std::sqrt(disc);
+    if (t <= 0.0f) return 0.0;
+    SurfaceInteraction si;
+    si.position = p + t * w;
+    si.geometric_normal = glm::normalize(si.position - sphere.center);
+    return light.pdf_li(p, si);
+  };
+  DirectionalChiSquareOptions options;
+  options.theta_bins = 40;
+  options.phi_bins = 80;
+  const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
+  EXPECT_EQ(r.impossible_observations, 0u);
+  EXPECT_GT(r.p_value, kSignificance) << r.summary();
+}
+
+TEST(IntegratorsLight, ParallelogramLightSamplingIsUniformInArea) {
+  Light l;
+  l.type = LightType::kArea;
+  l.color = Rgb(5.0f);
+  l.position = Vec3(0.2f, 0.0f, 1.0f);
+  l.direction = glm::normalize(Vec3(0.2f, 0.0f, -1.0f));
+  l.edge_u = Vec3(0.8f, 0.0f, 0.16f);
+  l.edge_v = Vec3(0.0f, 0.6f, 0.0f);
+  const ParallelogramLight light(l);
+  const Vec3 p(0.0f);
+  const Vec3 corner = l.position - 0.5f * (l.edge_u + l.edge_v);
+  const float area = glm::length(glm::cross(l.edge_u, l.edge_v));
+  const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+    const auto s = light.sample_li(p, u);
+    if (!s) return std::nullopt;
+    EXPECT_EQ(s->li, l.color);
+    return s->wi;
+  };
+  const DirectionPdf pdf = [&](const Vec3& w) -> double {
+    const Vec3 a = corner, b = corner + l.edge_u, c = corner + l.edge_u + l.edge_v,
+               d = corner + l.edge_v;
+    std::optional<float> t = hit_triangle(p, w, a, b, c);
+    if (!t) t = hit_triangle(p, w, a, c, d);
+    if (!t) return 0.0;
+    const float cos_light = std::abs(glm::dot(l.direction, w));
+    return (*t) * (*t) / (area * cos_light);
+  };
+  DirectionalChiSquareOptions options;
+  options.theta_bins = 40;
+  options.phi_bins = 80;
+  const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
+  EXPECT_EQ(r.impossible_observations, 0u);
+  EXPECT_GT(r.p_value, kSignificance) << r.summary();
+  // One-sided: nothing reaches a point behind it.
+  EXPECT_FALSE(light.sample_li(Vec3(0.0f, 0.0f, 3.0f), {0.5f, 0.5f}).has_value());
+}
+
+TEST(IntegratorsLight, AmbientLightSamplingMatchesPdf) {
+  Light l;
+  l.type = LightType::kAmbient;
+  l.color = Rgb(0.5f);
+  l.up = glm::normalize(Vec3(0.3f, 0.1f, 1.0f));
+  const AmbientLight light(l, 1.0f);
+  const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+    const auto s = light.sample_li(Vec3(0.0f), u);
+    if (!s) return std::nullopt;
+    return s->wi;
+  };
+  const DirectionPdf pdf = [&](const Vec3& w) { return double(light.pdf_li_escaped(w)); };
+  const ChiSquareResult r = directional_chi_square(sampler, pdf);
+  EXPECT_EQ(r.impossible_observations, 0u);
+  EXPECT_GT(r.p_value, kSignificance) << r.summary();
+  EXPECT_EQ(light.le_escaped(l.up), l.color);
+  EXPECT_EQ(light.le_escaped(-l.up), Rgb(0.0f));
+}
+
+/// A small lat-long map: a dim gradient, a bright spot, and a black band.
+Image test_environment() {
+  Image image;
+  image.width = 32;
+  image.height = 16;
+  image.channel_names = {"R", "G", "B", "A"};
+  image.pixels.assign(size_t(image.width) * image.height * 4, 0.0f);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const float g = y >= 10 && y < 12 ? 0.0f : 0.1f + 0.02f * float(x);
+      image.at(x, y, 0) = g;
+      image.at(x, y, 1) = 0.5f * g;
+      image.at(x, y, 2) = y == 3 ? -1.0f : g;  // negative values count as zero
+      image.at(x, y, 3) = 1.0f;
+    }
+  }
+  image.at(5, 4, 0) = image.at(5, 4, 1) = image.at(5, 4, 2) = 50.0f;
+  return image;
+}
+
+TEST(IntegratorsLight, EnvironmentSamplingMatchesPdf) {
+  const EnvironmentLight light(test_environment(), glm::normalize(Vec3(0.0f, 0.2f, 1.0f)), 1.0f);
+  const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+    const auto s = light.sample_li(Vec3(0.0f), u);
+    if (!s) return std::nullopt;
+    // The radiance returned is the radiance seen along that direction.
+    const Rgb le = light.le_escaped(s->wi);
+    EXPECT_NEAR(s->li.r, le.r, 1e-5f * (1.0f + le.r));
+    EXPECT_GT(luminance(s->li), 0.0f);
+    return s->wi;
+  };
+  const DirectionPdf pdf = [&](const Vec3& w) { return double(light.pdf_li_escaped(w)); };
+  DirectionalChiSquareOptions options;
+  options.theta_bins = 40;
+  options.phi_bins = 80;
+  const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
+  EXPECT_EQ(r.impossible_observations, 0u);
+  EXPECT_GT(r.p_value, kSignificance) << r.summary();
+  Image no_rgb;
+  no_rgb.width = no_rgb.height = 1;
+  no_rgb.channel_names = {"Y"};
+  no_rgb.pixels = {1.0f};
+  EXPECT_THROW(EnvironmentLight(no_rgb, Vec3(0, 0, 1), 1.0f), Error);
+}
+
+TEST(IntegratorsLight, PointAndSpotLightsFollowColladaAttenuation) {
+  Light l;
+  l.type = LightType::kPoint;
+  l.color = Rgb(4.0f);
+  l.position = Vec3(0.0f, 0.0f, 2.0f);
+  l.constant_attenuation = 1.0f;
+  l.linear_attenuation = 0.5f;
+  l.quadratic_attenuation = 0.25f;
+  const PointLight point(l);
+  const auto s = point.sample_li(Vec3(0.0f), {0.3f, 0.3f});
+  ASSERT_TRUE(s);
+  EXPECT_TRUE(point.is_delta());
+  EXPECT_NEAR(s->distance, 2.0f, 1e-6f);
+  EXPECT_NEAR(s->wi.z, 1.0f, 1e-6f);
+  EXPECT_NEAR(s->li.r, 4.0f / (1.0f + 0.5f * 2.0f + 0.25f * 4.0f), 1e-5f);
+
+  l.type = LightType::kSpot;
+  l.direction = Vec3(0.0f, 0.0f, -1.0f);
+  l.falloff_angle_deg = 60.0f;  // full cone: 30 degrees off the axis
+  l.falloff_exponent = 2.0f;
+  const PointLight spot(l);
+  const auto on_axis = spot.sample_li(Vec3(0.0f), {0.5f, 0.5f});
+  ASSERT_TRUE(on_axis);
+  EXPECT_NEAR(on_axis->li.r, s->li.r, 1e-5f);
+  // 20 degrees off the axis: inside, scaled by cos^2.
+  const float off = 2.0f * std::tan(radians(20.0f));
+  const auto inside = spot.sample_li(Vec3(off, 0.0f, 0.0f), {0.5f, 0.5f});
+  ASSERT_TRUE(inside);
+  const float d = std::sqrt(4.0f + off * off);
+  const float cos20 = std::cos(radians(20.0f));
+  EXPECT_NEAR(inside->li.r, 4.0f / (1.0f + 0.5f * d + 0.25f * d * d) * cos20 * cos20, 1e-4f);
+  // 40 degrees off the axis: outside the cone.
+  EXPECT_FALSE(spot.sample_li(Vec3(2.0f * std::tan(radians(40.0f)), 0.0f, 0.0f), {0.5f, 0.5f}));
+}
+
+TEST(IntegratorsLight, DirectionalLight) {
+  Light l;
+  l.type = LightType::kDirectional;
+  l.color = Rgb(3.0f);
+  l.direction = glm::normalize(Vec3(1.0f, 0.0f, -1.0f));
+  const DirectionalLight light(l, 2.0f);
+  const auto s = light.sample_li(Vec3(5.0f), {0.1f, 0.2f});
+  ASSERT_TRUE(s);
+  EXPECT_NEAR(glm::dot(s->wi, -l.direction), 1.0f, 1e-6f);
+  EXPECT_TRUE(std::isinf(s->distance));
+  EXPECT_EQ(s->li, l.color);
+}
+
+Scene scene_with_emitters() {
+  Scene scene;
+  scene.materials.resize(3);
+  scene.materials[0].type = MaterialType::kDiffuse;
+  scene.materials[1].type = MaterialType::kEmission;
+  scene.materials[1].radiance = Rgb(10.0f);
+  scene.materials[2].type = MaterialType::kEmission;
+  scene.materials[2].radiance = Rgb(1.0f);
+  TriangleMesh wall = tilted_quad();
+  wall.material_id = 0;
+  TriangleMesh lamp = tilted_quad();
+  lamp.material_id = 1;
+  scene.geometry.meshes = {wall, lamp};
+  scene.geometry.spheres = {Sphere{Vec3(0.0f), 0.1f, 0}, Sphere{Vec3(1.0f), 0.2f, 2}};
+  Light proxy;
+  proxy.type = LightType::kArea;
+  proxy.color = Rgb(10.0f);
+  proxy.edge_u = Vec3(1, 0, 0);
+  proxy.edge_v = Vec3(0, 1, 0);
+  proxy.duplicates_emissive_mesh = true;
+  Light point;
+  point.type = LightType::kPoint;
+  point.color = Rgb(1.0f);
+  scene.lights = {proxy, point};
+  scene.geometry.finalize();
+  return scene;
+}
+
+TEST(IntegratorsLight, LightSetCountsEmissiveMeshesOnceAndChoosesByPower) {
+  const Scene scene = scene_with_emitters();
+  const LightSet set(scene);
+  // The point light, the emissive mesh and the emissive sphere; not the duplicate proxy.
+  ASSERT_EQ(set.size(), 3u);
+  int kinds[4] = {0, 0, 0, 0};
+  for (const auto& l : set.lights()) ++kinds[int(l->kind())];
+  EXPECT_EQ(kinds[int(LightKind::kDelta)], 1);
+  EXPECT_EQ(kinds[int(LightKind::kSurface)], 2);
+  EXPECT_EQ(kinds[int(LightKind::kArea)], 0);
+
+  double total = 0.0;
+  for (const auto& l : set.lights()) total += luminance(l->power());
+  for (size_t i = 0; i < set.size(); ++i) {
+    EXPECT_NEAR(set.pmf(i), luminance(set.lights()[i]->power()) / total, 1e-6);
+  }
+  // Empirical selection frequencies.
+  IndependentSampler rng(3);
+  std::vector<int> counts(set.size(), 0);
+  const int n = 30000;
+  for (int i = 0; i < n; ++i) {
+    rng.start_pixel_sample({0, 0}, uint32_t(i));
+    float pmf = 0.0f;
+    const LightSource* light = set.sample(rng.get_1d(), &pmf);
+    ASSERT_NE(light, nullptr);
+    const size_t index = set.index_of(light);
+    ASSERT_LT(index, set.size());
+    EXPECT_EQ(pmf, set.pmf(index));
+    ++counts[index];
+  }
+  for (size_t i = 0; i < set.size(); ++i) {
+    const double p = set.pmf(i);
+    EXPECT_NEAR(double(counts[i]) / n, p, 4.5 * std::sqrt(p * (1 - p) / n) + 1e-9);
+  }
+
+  SurfaceInteraction si;
+  si.geom_id = 1;
+  EXPECT_NE(set.surface_light(si), nullptr);
+  si.geom_id = 0;
+  EXPECT_EQ(set.surface_light(si), nullptr);
+  si.geom_id = scene.geometry.sphere_geom_id();
+  si.prim_id = 1;
+  EXPECT_NE(set.surface_light(si), nullptr);
+  si.prim_id = 0;
+  EXPECT_EQ(set.surface_light(si), nullptr);
+}
+
+TEST(IntegratorsLight, AreaLightWithoutDuplicateIsKept) {
+  Scene scene = scene_with_emitters();
+  scene.lights[0].duplicates_emissive_mesh = false;
+  const LightSet set(scene);
+  EXPECT_EQ(set.size(), 4u);
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,219 @@
+// The integrator and sampler registries, the debug integrators, AOVs, adaptive sampling, the
+// film's statistics and independence from the thread count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "tests/integrators_test_scenes.h"
+
+namespace prism {
+namespace {
+
+using test::TestRender;
+
+TEST(IntegratorsOutput, RegistryListsEveryIntegrator) {
+  const auto& registry = integrator_registry();
+  for (const char* name : {"path", "direct", "ao", "normals", "depth"}) {
+    ASSERT_TRUE(registry.contains(name)) << name;
+    const auto integrator = registry.create(name, ParamSet{});
+    EXPECT_EQ(integrator->name(), name);
+  }
+  for (const auto& e : registry.entries()) EXPECT_FALSE(e.description.empty()) << e.name;
+  try {
+    registry.create("pth", ParamSet{});
+    FAIL() << "no error for an unknown integrator";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
+    EXPECT_NE(std::string(e.what()).find("path"), std::string::npos) << e.what();
+  }
+  ParamSet bad;
+  bad.set("path.microfacet", "phong");
+  EXPECT_THROW(registry.create("path", bad), Error);
+  ParamSet bad_rr;
+  bad_rr.set("path.rr_probability", "1.5");
+  EXPECT_THROW(registry.create("path", bad_rr), Error);
+}
+
+/// A unit sphere 3 units in front of the camera, nothing else.
+Scene one_sphere() {
+  Scene scene;
+  test::add_material(scene, MaterialType::kDiffuse, Rgb(0.25f, 0.5f, 0.75f), "paint");
+  scene.geometry.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
+  scene.camera.position = Vec3(0.0f, 0.0f, 4.0f);
+  scene.camera.target = Vec3(0.0f);
+  scene.camera.hfov_deg = scene.camera.vfov_deg = 40.0f;
+  scene.geometry.finalize();
+  return scene;
+}
+
+TEST(IntegratorsOutput, NormalsAndDepthOfASphere) {
+  const Scene scene = one_sphere();
+  TestRender settings;
+  settings.width = settings.height = 15;  // odd: the centre pixel looks straight at the sphere
+  settings.spp = 1;
+  settings.sampler = "jittered";  // spp 1: one stratum, the sample at random in it
+  const Image normals = test::render_scene(scene, "normals", settings);
+  const Image depth = test::render_scene(scene, "depth", settings);
+  // Centre: n = (0, 0, 1) -> colour (0.5, 0.5, 1); depth 3.
+  EXPECT_NEAR(normals.at(7, 7, 0), 0.5f, 0.05f);
+  EXPECT_NEAR(normals.at(7, 7, 1), 0.5f, 0.05f);
+  EXPECT_NEAR(normals.at(7, 7, 2), 1.0f, 0.01f);
+  EXPECT_NEAR(depth.at(7, 7, 0), 3.0f, 0.02f);
+  // Corners miss: black, depth 0.
+  EXPECT_EQ(normals.at(0, 0, 0), 0.0f);
+  EXPECT_EQ(depth.at(0, 0, 0), 0.0f);
+  // Every hit pixel: a unit normal on the camera's side, depth in [3, 4].
+  for (int y = 0; y < normals.height; ++y) {
+    for (int x = 0; x < normals.width; ++x) {
+      if (depth.at(x, y, 0) == 0.0f) continue;
+      const Vec3 n =
+          2.0f * Vec3(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2)) - Vec3(1.0f);
+      EXPECT_NEAR(glm::length(n), 1.0f, 1e-3f);
+      EXPECT_GT(n.z, 0.0f);
+      EXPECT_GE(depth.at(x, y, 0), 3.0f - 1e-4f);
+      EXPECT_LE(depth.at(x, y, 0), 4.0f);
+    }
+  }
+}
+
+TEST(IntegratorsOutput, AovsMatchTheDebugIntegrators) {
+  const Scene scene = test::cornell_box({.spheres = true});
+  TestRender settings;
+  settings.spp = 4;
+  const Image path = test::render_scene(scene, "path", settings);
+  const Image normals = test::render_scene(scene, "normals", settings);
+  const Image depth = test::render_scene(scene, "depth", settings);
+  ASSERT_EQ(path.channels(), Film::kChannels);
+  const std::vector<std::string> expected = {
+      "R",   "G",   "B", "albedo.R",      "albedo.G",   "albedo.B",   "N.X",
+      "N.Y", "N.Z", "Z", "sampleCount.Y", "variance.R", "variance.G", "variance.B"};
+  EXPECT_EQ(path.channel_names, expected);
+  for (int y = 0; y < path.height; ++y) {
+    for (int x = 0; x < path.width; ++x) {
+      // Same sampler, same camera rays: the AOVs are the debug integrators' values.
+      EXPECT_NEAR(path.at(x, y, Film::kDepthChannel), depth.at(x, y, 0), 1e-4f);
+      for (int c = 0; c < 3; ++c) {
+        const float n = path.at(x, y, Film::kNormalChannel + c);
+        const float from_normals = depth.at(x, y, 0) > 0.0f ? 0.5f * n + 0.5f : 0.0f;
+        EXPECT_NEAR(from_normals, normals.at(x, y, c), 1e-4f);
+      }
+      EXPECT_EQ(path.at(x, y, Film::kSampleCountChannel), 4.0f);
+      EXPECT_GE(path.at(x, y, Film::kVarianceChannel), 0.0f);
+    }
+  }
+  // The middle of the back wall: white (0.75), facing +z.
+  const int cx = path.width / 2, cy = path.height / 3;
+  EXPECT_NEAR(path.at(cx, cy, Film::kAlbedoChannel), 0.75f, 1e-5f);
+  EXPECT_NEAR(path.at(cx, cy, Film::kNormalChannel + 2), 1.0f, 1e-4f);
+}
+
+TEST(IntegratorsOutput, AdaptiveSamplingStopsConvergedPixels) {
+  Scene scene = test::cornell_box({.spheres = true, .sphere_material = MaterialType::kDiffuse});
+  scene.camera.hfov_deg = scene.camera.vfov_deg = 60.0f;  // the black outside in view too
+  TestRender settings;
+  settings.width = settings.height = 16;
+  settings.spp = 256;
+  settings.adaptive_batch = 16;
+  settings.adaptive_tolerance = 0.05f;
+  settings.max_depth = 3;
+  const Image image = test::render_scene(scene, "path", settings);
+  int stopped_early = 0, black = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const float n = image.at(x, y, Film::kSampleCountChannel);
+      ASSERT_GE(n, 16.0f);
+      ASSERT_LE(n, 256.0f);
+      ASSERT_EQ(std::fmod(n, 16.0f), 0.0f);  // whole batches
+      stopped_early += n < 256.0f ? 1 : 0;
+      if (image.at(x, y, 0) == 0.0f && image.at(x, y, Film::kDepthChannel) == 0.0f) {
+        // Outside the box: the first batch is black and noiseless, so it stops at once.
+        ++black;
+        EXPECT_EQ(n, 16.0f);
+      }
+    }
+  }
+  EXPECT_GT(stopped_early, 0);
+  EXPECT_GT(black, 0);
+  // Without -a every pixel takes every sample.
+  settings.adaptive_batch = 0;
+  settings.spp = 8;
+  const Image fixed = test::render_scene(scene, "path", settings);
+  for (int y = 0; y < fixed.height; ++y) {
+    for (int x = 0; x < fixed.width; ++x) {
+      ASSERT_EQ(fixed.at(x, y, Film::kSampleCountChannel), 8.0f);
+    }
+  }
+}
+
+TEST(IntegratorsOutput, FilmMeanVarianceAndNonFiniteSamples) {
+  Film film(2, 1);
+  const float values[] = {1.0f, 2.0f, 3.0f, 6.0f};
+  for (float v : values) film.add_sample({0, 0}, Rgb(v), AovSample{Rgb(0.5f), Vec3(0, 0, 1), 2.0f});
+  film.add_sample({1, 0}, Rgb(std::nanf("")));
+  film.add_sample({1, 0}, Rgb(kInfinity));
+  film.add_sample({1, 0}, Rgb(4.0f));
+  EXPECT_EQ(film.non_finite_samples(), 2u);
+  const Image image = film.resolve();
+  EXPECT_EQ(image.count_non_finite(), 0u);
+  EXPECT_FLOAT_EQ(image.at(0, 0, 0), 3.0f);
+  // Sample variance (1 + 4 + 0 + 9) / 3 = 14/3; of the mean: / 4.
+  EXPECT_NEAR(image.at(0, 0, Film::kVarianceChannel), 14.0f / 3.0f / 4.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kAlbedoChannel), 0.5f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kNormalChannel + 2), 1.0f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kDepthChannel), 2.0f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kSampleCountChannel), 4.0f);
+  // Non-finite samples count as zero radiance.
+  EXPECT_FLOAT_EQ(image.at(1, 0, 0), 4.0f / 3.0f);
+  EXPECT_FLOAT_EQ(image.at(1, 0, Film::kSampleCountChannel), 3.0f);
+}
+
+TEST(IntegratorsOutput, ImagesDoNotDependOnTheThreadCount) {
+  const Scene scene = test::cornell_box({.spheres = true, .sphere_material = MaterialType::kGlass});
+  TestRender settings;
+  settings.spp = 4;
+  settings.sampler = "sobol";
+  Image one, two;
+  {
+    const ThreadLimit limit(1);
+    one = test::render_scene(scene, "path", settings);
+  }
+  {
+    const ThreadLimit limit(2);
+    two = test::render_scene(scene, "path", settings);
+  }
+  ASSERT_EQ(one.pixels.size(), two.pixels.size());
+  for (size_t i = 0; i < one.pixels.size(); ++i) ASSERT_EQ(one.pixels[i], two.pixels[i]) << i;
+}
+
+TEST(IntegratorsOutput, AmbientOcclusion) {
+  // A lone floor: nothing occludes, so every hit pixel is fully open.
+  Scene scene;
+  test::add_material(scene, MaterialType::kDiffuse, Rgb(0.5f), "floor");
+  scene.geometry.meshes.push_back(
+      test::quad("floor", {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, 0));
+  scene.camera.position = Vec3(0.0f, 1.0f, 2.0f);
+  scene.camera.target = Vec3(0.0f);
+  scene.geometry.finalize();
+  TestRender settings;
+  settings.spp = 4;
+  ParamSet params;
+  params.set("ao.samples", "4");
+  const Image open = test::render_scene(scene, "ao", params, settings);
+  for (int y = 0; y < open.height; ++y) {
+    for (int x = 0; x < open.width; ++x) EXPECT_LE(open.at(x, y, 0), 1.0f);
+  }
+  // The centre looks at the middle of the floor; a corner at the sky.
+  EXPECT_EQ(open.at(open.width / 2, open.height / 2, 0), 1.0f);
+  EXPECT_EQ(open.at(0, 0, 0), 0.0f);
+  // Inside the closed Cornell box, corners are occluded.
+  const Image box = test::render_scene(test::cornell_box(), "ao", params, settings);
+  const test::ImageMean m = test::image_mean(box, 0);
+  EXPECT_GT(m.mean, 0.1);
+  EXPECT_LT(m.mean, 1.0);
+}
+
+}  // namespace
+}  // namespace prism

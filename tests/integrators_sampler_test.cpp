@@ -1,0 +1,167 @@
+// Samplers: pure functions of (pixel, index, dimension, seed), in [0, 1), uniform, and the
+// stratification each promises; all give the same image in mean.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/error.h"
+#include "core/samplers.h"
+#include "integrators/sampling/statistics.h"
+#include "tests/integrators_test_scenes.h"
+
+namespace prism {
+namespace {
+
+TEST(IntegratorsSampler, RegistryListsEverySampler) {
+  for (const char* name : {"independent", "jittered", "sobol"}) {
+    ASSERT_TRUE(sampler_registry().contains(name)) << name;
+    EXPECT_EQ(create_sampler(name, 3)->name(), name);
+  }
+  EXPECT_THROW(create_sampler("halton", 1), Error);
+}
+
+TEST(IntegratorsSampler, ValuesArePureFunctionsInUnitInterval) {
+  for (const char* name : {"independent", "jittered", "sobol"}) {
+    SCOPED_TRACE(name);
+    auto a = create_sampler(name, 42);
+    a->set_sample_count(16);
+    auto b = a->clone();
+    std::vector<float> first;
+    for (int pass = 0; pass < 2; ++pass) {
+      Sampler& s = pass == 0 ? *a : *b;
+      for (uint32_t i = 0; i < 40; ++i) {
+        s.start_pixel_sample({3, 5}, i);
+        for (int d = 0; d < 10; ++d) {
+          const float v = d % 3 == 0 ? s.get_2d().y : s.get_1d();
+          ASSERT_GE(v, 0.0f);
+          ASSERT_LT(v, 1.0f);
+          if (pass == 0) {
+            first.push_back(v);
+          } else {
+            ASSERT_EQ(v, first[i * 10 + d]);  // clone, same inputs: same value
+          }
+        }
+      }
+    }
+    // Another seed or pixel gives other values.
+    auto c = create_sampler(name, 43);
+    c->set_sample_count(16);
+    c->start_pixel_sample({3, 5}, 0);
+    auto d = a->clone();
+    d->start_pixel_sample({4, 5}, 0);
+    a->start_pixel_sample({3, 5}, 0);
+    const Vec2 va = a->get_2d();
+    EXPECT_NE(va, c->get_2d());
+    EXPECT_NE(va, d->get_2d());
+  }
+}
+
+TEST(IntegratorsSampler, ValuesAreUniform) {
+  // Chi-square of a 64-bin histogram of values pooled over pixels, indices and dimensions.
+  const double significance = sidak_significance(0.01, 3);
+  for (const char* name : {"independent", "jittered", "sobol"}) {
+    auto s = create_sampler(name, 7);
+    s->set_sample_count(8);
+    std::vector<double> observed(64, 0.0), expected(64, 0.0);
+    size_t n = 0;
+    for (int p = 0; p < 500; ++p) {
+      for (uint32_t i = 0; i < 8; ++i) {
+        s->start_pixel_sample({p % 37, p / 37}, i);
+        for (int d = 0; d < 6; ++d) {
+          const Vec2 u = s->get_2d();
+          observed[size_t(u.x * 64)] += 1;
+          observed[size_t(u.y * 64)] += 1;
+          n += 2;
+        }
+      }
+    }
+    for (double& e : expected) e = double(n) / 64.0;
+    const ChiSquareResult r = chi_square_test(observed, expected);
+    EXPECT_GT(r.p_value, significance) << name << ": " << r.summary();
+  }
+}
+
+/// Whether the points, one per cell, fill every cell of a cols x rows grid exactly once.
+bool one_per_cell(const std::vector<Vec2>& points, int cols, int rows) {
+  std::vector<int> cells(size_t(cols) * rows, 0);
+  for (const Vec2& p : points) ++cells[size_t(p.y * rows) * cols + size_t(p.x * cols)];
+  for (int c : cells) {
+    if (c != 1) return false;
+  }
+  return true;
+}
+
+TEST(IntegratorsSampler, JitteredFillsEveryStratum) {
+  JitteredSampler s(9, 16);
+  for (int dim_pair = 0; dim_pair < 4; ++dim_pair) {
+    std::vector<Vec2> points;
+    std::vector<Vec2> line;
+    for (uint32_t i = 0; i < 16; ++i) {
+      s.start_pixel_sample({1, 1}, i);
+      for (int d = 0; d < dim_pair; ++d) s.get_2d();
+      points.push_back(s.get_2d());
+      line.push_back({s.get_1d(), 0.5f});
+    }
+    EXPECT_TRUE(one_per_cell(points, 4, 4)) << "pair " << dim_pair;
+    EXPECT_TRUE(one_per_cell(line, 16, 1)) << "pair " << dim_pair;
+  }
+}
+
+TEST(IntegratorsSampler, SobolPairsAreZeroTwoNets) {
+  // With 2^m samples per pixel, every pair of dimensions of a pixel is a (0, m, 2)-net: each
+  // elementary interval of area 2^-m holds exactly one point.
+  for (int m : {4, 6}) {
+    const uint32_t n = 1u << m;
+    SobolSampler s(5, int(n));
+    for (int pixel = 0; pixel < 3; ++pixel) {
+      for (int pair = 0; pair < 5; ++pair) {
+        std::vector<Vec2> points;
+        for (uint32_t i = 0; i < n; ++i) {
+          s.start_pixel_sample({pixel, 2 * pixel}, i);
+          for (int d = 0; d < pair; ++d) s.get_2d();
+          points.push_back(s.get_2d());
+        }
+        for (int k = 0; k <= m; ++k) {
+          EXPECT_TRUE(one_per_cell(points, 1 << k, 1 << (m - k)))
+              << "m=" << m << " pixel " << pixel << " pair " << pair << " k=" << k;
+        }
+      }
+    }
+  }
+}
+
+TEST(IntegratorsSampler, PermutationElementIsABijection) {
+  for (uint32_t count : {1u, 2u, 7u, 16u, 100u, 1000u}) {
+    for (uint64_t seed : {1ull, 99ull, 0xdeadbeefcafeull}) {
+      std::vector<int> seen(count, 0);
+      for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t p = permutation_element(i, count, seed);
+        ASSERT_LT(p, count);
+        ++seen[p];
+      }
+      for (int v : seen) ASSERT_EQ(v, 1) << "count " << count;
+    }
+  }
+}
+
+TEST(IntegratorsSampler, EverySamplerGivesTheSameImageInMean) {
+  const Scene scene = test::cornell_box(
+      {.spheres = true, .sphere_material = MaterialType::kDiffuse, .camera_below_light = true});
+  test::TestRender settings;
+  settings.spp = 16;
+  settings.max_depth = 3;
+  const Image reference = test::render_scene(scene, "path", settings);
+  for (const char* name : {"jittered", "sobol"}) {
+    test::TestRender s = settings;
+    s.sampler = name;
+    s.seed = 11;
+    const Image image = test::render_scene(scene, "path", s);
+    // The stratified samplers' per-pixel variance estimates are conservative (they assume
+    // independent samples), which only makes this test more lenient.
+    test::expect_same_mean(reference, image, 4.5, name);
+  }
+}
+
+}  // namespace
+}  // namespace prism
