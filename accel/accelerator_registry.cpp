@@ -23,7 +23,9 @@ const Registry<Accelerator>& accelerator_registry() {
            &make<BruteAccelerator>},
           {"bvh", "handwritten binary BVH, median split (bvh.max_leaf_size, default 4)",
            &make<BvhAccelerator>},
-          {"embree", "Intel Embree 3 (embree.robust=false, embree.quality=low|medium|high)",
+          {"embree",
+           "Intel Embree 3 (embree.robust=false, embree.quality=low|medium|high, "
+           "embree.refine=true)",
            &make<EmbreeAccelerator>},
       });
   return registry;

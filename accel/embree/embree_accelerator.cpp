@@ -1,5 +1,7 @@
 #include "accel/embree/embree_accelerator.h"
 
+#include "core/primitive_intersection.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -54,8 +56,25 @@ void fill_ray(const Ray& ray, RTCRay& out) {
 
 }  // namespace
 
+void EmbreeAccelerator::refine_triangle_hit(const Ray& ray, Hit& hit) const {
+  // Embree's triangle test rounds differently from core's watertight test, so the same
+  // primitive gets (t, u, v) a few ulps apart and interpolated normals differ in the last bits.
+  // Re-running the shared test on the primitive Embree chose makes the backends differ only in
+  // which primitive they choose (ties), never in the values for it.
+  const TriangleMesh& mesh = geometry_->meshes[hit.geom_id];
+  const glm::uvec3 tri = mesh.triangles[hit.prim_id];
+  const auto exact = intersect_triangle(WatertightRay(ray), mesh.positions[tri.x],
+                                        mesh.positions[tri.y], mesh.positions[tri.z]);
+  if (exact) {
+    hit.t = exact->t;
+    hit.u = exact->u;
+    hit.v = exact->v;
+  }
+}
+
 EmbreeAccelerator::EmbreeAccelerator(const ParamSet& params)
     : robust_(params.get_bool("embree.robust", false)),
+      refine_(params.get_bool("embree.refine", true)),
       quality_(parse_quality(params.get_string("embree.quality", "medium"))),
       device_(std::make_unique<EmbreeDevice>()) {}
 
@@ -117,7 +136,9 @@ std::optional<Hit> EmbreeAccelerator::intersect(const Ray& ray) const {
   rtcIntersect1(scene_, &context.base, &rayhit);
   if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   const float t = std::clamp(rayhit.ray.tfar, prepared->tmin, prepared->tmax);
-  return Hit{t, rayhit.hit.u, rayhit.hit.v, rayhit.hit.geomID, rayhit.hit.primID};
+  Hit hit{t, rayhit.hit.u, rayhit.hit.v, rayhit.hit.geomID, rayhit.hit.primID};
+  if (refine_ && !geometry_->is_sphere(hit.geom_id)) refine_triangle_hit(*prepared, hit);
+  return hit;
 }
 
 bool EmbreeAccelerator::occluded(const Ray& ray) const {

@@ -17,15 +17,18 @@ namespace prism {
 /// geometry ids equal prism's geom_ids.
 ///
 /// Parameters: embree.robust (bool, default false: RTC_SCENE_FLAG_ROBUST), embree.quality
-/// (low | medium | high, default medium: the BVH build quality).
+/// (low | medium | high, default medium: the BVH build quality), embree.refine (bool, default
+/// true: t, u, v of a triangle hit are recomputed by core's watertight test on the primitive
+/// Embree chose, so renders with bvh and embree differ only where the backends pick different
+/// primitives; false gives Embree's own values, as `prism bench` and the differential test use).
 ///
 /// Interval convention: Embree accepts a triangle at t only if tnear < t <= tfar, evaluated in
 /// its own scaled arithmetic (t * |den| against tnear * |den|). To honour prism's closed
 /// [tmin, tmax] it is given tnear = the float below tmin, and the t it reports is clamped into
 /// [tmin, tmax] (the final division may round it by an ulp). What remains different: a hit at
 /// exactly t = 0 with tmin = 0 (origin on a triangle) is not reported, and Embree's triangle
-/// test is its own (not watertight unless embree.robust), so its t, u, v differ from brute
-/// force by rounding. Sphere hits are bit for bit those of brute force.
+/// test is its own (not watertight unless embree.robust), so without refinement its t, u, v
+/// differ from brute force by rounding. Sphere hits are bit for bit those of brute force.
 class EmbreeAccelerator final : public Accelerator {
  public:
   /// Reads the parameters (throws Error(kUsage) on a bad value) and creates the device
@@ -47,7 +50,11 @@ class EmbreeAccelerator final : public Accelerator {
 
  private:
   bool robust_ = false;
+  bool refine_ = true;
   RTCBuildQuality quality_ = RTC_BUILD_QUALITY_MEDIUM;
+  /// Recomputes t, u, v of a triangle hit with core's watertight test (embree.refine).
+  void refine_triangle_hit(const Ray& ray, Hit& hit) const;
+
   std::unique_ptr<EmbreeDevice> device_;
   RTCScene scene_ = nullptr;
   const SceneGeometry* geometry_ = nullptr;
