@@ -255,6 +255,23 @@ void ColorPipeline::working_to_output(Image& image) const {
   }
 }
 
+void ColorPipeline::convert_image_to_working(Image& image, const std::string& from) const {
+  PRISM_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels());
+  const OCIO::ConstConfigRcPtr& config = impl_->loaded.config;
+  const std::string src = resolve_color_space(*config, from, "input space");
+  if (src == impl_->working) return;
+  OCIO::ConstCPUProcessorRcPtr processor;
+  try {
+    processor = config->getProcessor(src.c_str(), impl_->working.c_str())->getDefaultCPUProcessor();
+  } catch (const OCIO::Exception& e) {
+    impl_->fail(e);
+  }
+  for (const auto& triple : color_channel_triples(image)) {
+    apply_rgb(processor, image.pixels.data(), size_t(image.width) * image.height, image.channels(),
+              triple.data());
+  }
+}
+
 Image ColorPipeline::working_to_display(const Image& image) const {
   if (!impl_->to_display) {
     throw Error(ErrorKind::kUsage, "the OCIO config (" + impl_->loaded.source +
@@ -292,6 +309,13 @@ Rgb ColorPipeline::convert(const Rgb& color, const std::string& from, const std:
   } catch (const OCIO::Exception& e) {
     impl_->fail(e);
   }
+}
+
+std::optional<std::string> ColorPipeline::find_color_space(const std::string& name) const {
+  if (name.empty()) return std::nullopt;
+  const auto space = impl_->loaded.config->getColorSpace(name.c_str());
+  if (!space) return std::nullopt;
+  return std::string(space->getName());
 }
 
 Rgb ColorPipeline::working_to_display(const Rgb& color) const {

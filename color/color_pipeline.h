@@ -58,10 +58,19 @@ class ColorPipeline {
   /// the output space, in place, and likewise every colour AOV ("albedo.R/G/B", see
   /// is_color_layer); other channels (AOVs that are data) are left alone.
   void working_to_output(Image& image) const;
+  /// Converts the beauty and every colour AOV of an image (as working_to_output selects them)
+  /// from the colour space `from` (name, alias or role) to the working space, in place; data
+  /// channels are left alone. For images read back from files (`prism convert`). Throws
+  /// Error(kUsage) listing the colour spaces when `from` is unknown.
+  void convert_image_to_working(Image& image, const std::string& from) const;
   /// Display-referred 8-bit-ready values in [0,1]: the beauty channels through exposure, look,
   /// display and view. Returns an RGB image.
   Image working_to_display(const Image& image) const;
 
+  /// The canonical name of the colour space that `name` (a name, alias or role, as OCIO
+  /// matches them) denotes in the active config, or nothing when the config has none by that
+  /// name. For names read from files, which may come from another config.
+  std::optional<std::string> find_color_space(const std::string& name) const;
   /// Converts one colour between two colour spaces (names, aliases or roles) of the config.
   /// Throws Error(kUsage) listing the colour spaces when a name is unknown.
   Rgb convert(const Rgb& color, const std::string& from, const std::string& to) const;

@@ -21,7 +21,8 @@
 namespace prism {
 namespace {
 
-constexpr std::array<const char*, 4> kCommands = {"render", "info", "list", "colorspaces"};
+constexpr std::array<const char*, 5> kCommands = {"render", "info", "list", "colorspaces",
+                                                  "convert"};
 
 /// `prism render --help`'s footer; the defaults come from the constants the code uses.
 std::string render_footer() {
@@ -119,6 +120,19 @@ void add_info_options(CLI::App& info, InfoOptions& o) {
                 "COLLADA: use the file's camera, not the homework framing");
 }
 
+void add_convert_options(CLI::App& convert, ConvertOptions& o) {
+  convert.add_option("input", o.input, "scene-linear EXR to read (its R, G, B)")->required();
+  convert.add_option("output", o.output, "display-referred file: .png, .jpg or .tif")->required();
+  convert.add_option("--input-space", o.input_space,
+                     "colour space of the EXR (default: its prism:colorSpace, else scene_linear)");
+  convert.add_option("--ocio-config", o.color.ocio_config,
+                     "OpenColorIO config file (default: $OCIO, else the bundled config)");
+  convert.add_option("--display", o.color.display, "display (default: the config's)");
+  convert.add_option("--view", o.color.view, "view of that display (default: the display's)");
+  convert.add_option("--look", o.color.look, "look applied with the view");
+  convert.add_option("--exposure", o.color.exposure, "exposure in stops, before the view");
+}
+
 /// One line, whatever CLI11 put in its message.
 void print_usage_error(const std::string& message, const std::string& help_hint) {
   std::string line = message;
@@ -152,6 +166,11 @@ int run_cli(int argc, const char* const* argv) {
   colorspaces->add_option("--ocio-config", ocio_config,
                           "OpenColorIO config file (default: $OCIO, else the bundled config)");
 
+  ConvertOptions convert_options;
+  CLI::App* convert = app.add_subcommand(
+      "convert", "a PNG/JPEG/TIFF of an existing EXR through an OCIO display and view");
+  add_convert_options(*convert, convert_options);
+
   std::vector<std::string> args = arguments_with_default_command(argc, argv);
   if (args.empty()) {
     std::fputs(app.help().c_str(), stdout);
@@ -177,6 +196,7 @@ int run_cli(int argc, const char* const* argv) {
   if (info->parsed()) return run_info_command(info_options);
   if (list->parsed()) return run_list_command();
   if (colorspaces->parsed()) return run_colorspaces_command(ocio_config);
+  if (convert->parsed()) return run_convert_command(convert_options);
   std::fputs(app.help().c_str(), stdout);
   return kExitSuccess;
 }

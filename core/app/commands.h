@@ -31,4 +31,17 @@ int run_list_command();
 /// `prism colorspaces`: what the OpenColorIO config (`ocio_config`, empty: the default) offers.
 int run_colorspaces_command(const std::string& ocio_config);
 
+/// What `prism convert` reads and writes.
+struct ConvertOptions {
+  std::string input;        ///< an EXR (its beauty R, G, B; AOV layers are ignored)
+  std::string output;       ///< .png, .jpg/.jpeg or .tif/.tiff
+  std::string input_space;  ///< empty: the EXR's prism:colorSpace, else scene_linear
+  ColorOptions color;       ///< --ocio-config, --display, --view, --look, --exposure
+};
+
+/// `prism convert`: a display-referred image of an existing EXR through an OCIO display/view,
+/// written atomically; prints a summary line on stdout. Throws prism::Error before writing
+/// anything when a name, the input or the output folder is bad.
+int run_convert_command(const ConvertOptions& options);
+
 }  // namespace prism
