@@ -135,7 +135,7 @@ TEST_F(AppBadInput, BadOptionValues) {
       {{"--exr-type", "double"}, "'double'"},
       {{"--set", "novalue"}, "novalue"},
       {{"--no-such-option"}, "--no-such-option"},
-      {{"-e", "sky.exr"}, "environment maps are not supported yet"},
+      {{"-e", "sky.exr"}, "sky.exr: environment map (-e): the file does not exist"},
   };
   for (const auto& c : cases) {
     std::vector<std::string> args = {scene};

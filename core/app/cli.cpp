@@ -94,7 +94,8 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
                   "direct light by uniform hemisphere sampling");
   render.add_option("-b,--lens-radius", o.lens_radius, "thin-lens aperture radius (0: pinhole)");
   render.add_option("-d,--focal-distance", o.focal_distance, "distance of the plane in focus");
-  render.add_option("-e,--environment", o.environment_map, "environment map (not supported yet)");
+  render.add_option("-e,--environment", o.environment_map,
+                    "latitude-longitude environment map (EXR, .hdr, ...) lighting the scene");
   render.add_option("-c,--camera-file", o.camera_file, "camera settings (not supported yet)");
   // allow_extra_args(false): one value per --set, so `--set k=v scene.dae` keeps its scene.
   render.add_option("--set", o.set, "component parameter key=value, e.g. bvh.max_leaf_size=4")

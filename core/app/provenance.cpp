@@ -6,7 +6,7 @@ namespace prism {
 
 ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& params,
                               const RenderRecord& record) {
-  return {
+  ImageMetadata metadata{
       {"prism:version", PRISM_VERSION},
       {"prism:scene", record.scene},
       {"prism:accelerator", settings.accelerator},
@@ -22,12 +22,20 @@ ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& pa
       {"prism:samples_per_second", fmt::format("{:.0f}", samples_per_second(settings, record))},
       {"prism:command_line", record.command_line},
       {"prism:params", params.to_string()},
+      {"prism:camera_samples", fmt::format("{:.0f}", record.camera_samples)},
       {"prism:non_finite_samples", std::to_string(record.non_finite_samples)},
   };
+  if (!record.environment.empty()) {
+    metadata.emplace_back("prism:environment", record.environment);
+    metadata.emplace_back("prism:environmentColorSpace", record.environment_space);
+  }
+  return metadata;
 }
 
 double samples_per_second(const RenderSettings& settings, const RenderRecord& record) {
-  const double samples = double(settings.width) * settings.height * settings.spp;
+  const double samples = record.camera_samples > 0.0
+                             ? record.camera_samples
+                             : double(settings.width) * settings.height * settings.spp;
   return record.render_ms > 0.0 ? samples / (record.render_ms * 1e-3) : 0.0;
 }
 

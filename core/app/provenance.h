@@ -15,17 +15,22 @@ struct RenderRecord {
   double build_ms = 0.0;
   double render_ms = 0.0;
   uint64_t non_finite_samples = 0;
+  double camera_samples = 0.0;  ///< camera rays traced (adaptive renders stop pixels early)
   std::string command_line;
+  std::string environment;        ///< -e file as given; empty: no environment map
+  std::string environment_space;  ///< colour space its values were read as
 };
 
 /// The prism:* header attributes (version, scene, components, settings, timings, --set
-/// parameters, command line, non-finite samples) of an output file. The image writers add the
-/// colour attributes (config, its hash, spaces, display, view) themselves.
+/// parameters, command line, non-finite samples, and prism:environment /
+/// prism:environmentColorSpace when an environment map was used) of an output file. The image
+/// writers add the colour attributes (config, its hash, spaces, display, view) themselves.
 ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& params,
                               const RenderRecord& record);
 
 /// argv as one shell-readable line: arguments with spaces or quotes are single-quoted.
-/// Camera samples per second of wall-clock render time (width * height * spp / render time).
+/// Camera samples per second of wall-clock render time (record.camera_samples when known, else
+/// width * height * spp, over the render time).
 double samples_per_second(const RenderSettings& settings, const RenderRecord& record);
 
 std::string quote_command_line(int argc, const char* const* argv);

@@ -2,14 +2,18 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "accel/accelerator.h"
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
 #include "core/app/commands.h"
 #include "core/app/component_params.h"
+#include "core/app/environment_map.h"
 #include "core/app/provenance.h"
+#include "core/app/sample_rate_image.h"
 #include "core/app/timing.h"
 #include "core/film.h"
 #include "core/parallel.h"
@@ -55,6 +59,40 @@ std::string summary_line(const std::filesystem::path& scene, const RenderSetting
       settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6, files);
 }
 
+/// Where the adaptive sampler's "sample rate" picture goes: <first output>_rate.png.
+std::filesystem::path sample_rate_path(const RenderSettings& settings) {
+  std::filesystem::path path = settings.outputs.front().path;
+  return path.replace_filename(path.stem().string() + "_rate.png");
+}
+
+/// Writes the homework's colour-mapped sample-rate PNG of an adaptive render. Its colours are
+/// already display values, so they go through the display's Raw view.
+void write_sample_rate_image(const std::filesystem::path& path, const Image& image,
+                             const ImageMetadata& metadata, const ColorOptions& color) {
+  const std::optional<Image> rate = make_sample_rate_image(image);
+  if (!rate) return;
+  ColorOptions raw = color;
+  raw.view = "Raw";
+  raw.look.clear();
+  raw.exposure = 0.0f;
+  write_display_image(path, *rate, metadata, ColorPipeline(raw));
+}
+
+/// Camera samples the film received (the adaptive sampler stops pixels early).
+double total_camera_samples(const Image& image, const RenderSettings& settings) {
+  const auto it =
+      std::find(image.channel_names.begin(), image.channel_names.end(), "sampleCount.Y");
+  if (it == image.channel_names.end()) {
+    return double(settings.width) * settings.height * settings.spp;
+  }
+  const int channel = static_cast<int>(it - image.channel_names.begin());
+  double total = 0.0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) total += image.at(x, y, channel);
+  }
+  return total;
+}
+
 }  // namespace
 
 int run_render_command(const RenderOptions& options) {
@@ -71,9 +109,19 @@ int run_render_command(const RenderOptions& options) {
 
   const ColorPipeline pipeline(options.color);
   pipeline.convert_scene_to_working(scene, pipeline.scene_file_space());
+  // The environment map is input like the scene: read and checked before any long work.
+  std::optional<EnvironmentMap> environment;
+  if (!options.environment_map.empty()) {
+    environment = load_environment_map(options.environment_map, pipeline);
+    for (const auto& warning : environment->warnings) {
+      std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
+    }
+  }
 
   // Fail on an unwritable output now rather than after a long render.
   for (const auto& output : settings.outputs) check_output_writable(output.path);
+  const bool adaptive = settings.adaptive_batch > 0;
+  if (adaptive) check_output_writable(sample_rate_path(settings));
 
   // Every component exists before the (possibly long) build, so mistyped names and --set keys
   // fail fast.
@@ -88,6 +136,10 @@ int run_render_command(const RenderOptions& options) {
   RenderRecord record;
   record.scene = scene_path.string();
   record.command_line = options.command_line;
+  if (environment) {
+    record.environment = options.environment_map;
+    record.environment_space = environment->color_space;
+  }
   record.build_ms = time_ms([&] { accel->build(scene.geometry); });
 
   Film film(settings.width, settings.height);
@@ -106,6 +158,7 @@ int run_render_command(const RenderOptions& options) {
       .adaptive_batch = settings.adaptive_batch,
       .adaptive_tolerance = settings.adaptive_tolerance,
       .progress = &progress,
+      .environment = environment ? &environment->image : nullptr,
   };
   record.render_ms = time_ms([&] { integrator->render(context, film); });
   progress.done();
@@ -116,8 +169,10 @@ int run_render_command(const RenderOptions& options) {
   }
 
   const Image image = film.resolve();
-  write_outputs(settings.outputs, image, make_provenance(settings, params, record), pipeline,
-                options.exr_options);
+  record.camera_samples = total_camera_samples(image, settings);
+  const ImageMetadata metadata = make_provenance(settings, params, record);
+  write_outputs(settings.outputs, image, metadata, pipeline, options.exr_options);
+  if (adaptive) write_sample_rate_image(sample_rate_path(settings), image, metadata, options.color);
   std::printf("%s\n", summary_line(scene_path, settings, record).c_str());
   return kExitSuccess;
 }

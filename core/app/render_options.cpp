@@ -116,9 +116,6 @@ void validate_render_options(const RenderOptions& options) {
                                     "' in '" + options.output +
                                     "'; use .exr, .png, .jpg, .jpeg, .tif or .tiff");
   }
-  if (!options.environment_map.empty()) {
-    bad_option("--environment (-e)", "environment maps are not supported yet");
-  }
   if (!options.camera_file.empty()) {
     bad_option("--camera-file (-c)", "camera settings files are not supported yet");
   }

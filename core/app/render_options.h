@@ -55,7 +55,7 @@ struct RenderOptions {
   bool hemisphere_sampling = false;                ///< -H
   std::optional<float> lens_radius;                ///< -b
   std::optional<float> focal_distance;             ///< -d
-  std::string environment_map;                     ///< -e (not supported yet)
+  std::string environment_map;                     ///< -e: lat-long image file; empty: none
   std::string camera_file;                         ///< -c (not supported yet)
   std::string output;                              ///< empty: <scene stem>.exr here
   bool png = false;                                ///< also write <output stem>.png
