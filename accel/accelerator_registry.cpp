@@ -2,7 +2,7 @@
 
 #include "accel/accelerator.h"
 #include "accel/brute/brute_accelerator.h"
-#include "accel/bvh/bvh_accelerator.h"
+#include "accel/bvh/wide_bvh_accelerator.h"
 #include "accel/embree/embree_accelerator.h"
 
 namespace prism {
@@ -21,8 +21,13 @@ const Registry<Accelerator>& accelerator_registry() {
       {
           {"brute", "tests every primitive for every ray; the exact reference for validation",
            &make<BruteAccelerator>},
-          {"bvh", "handwritten binary BVH, median split (bvh.max_leaf_size, default 4)",
-           &make<BvhAccelerator>},
+          {"bvh",
+           "handwritten BVH: bvh.split=median|sah|sbvh (default sah), "
+           "bvh.layout=bvh2|bvh4|bvh8 (default bvh8), bvh.bins, bvh.leaf_cost, "
+           "bvh.traversal_cost, bvh.max_leaf_size, bvh.sbvh_alpha, bvh.sbvh_budget, "
+           "bvh.isa=auto|avx512|avx2|generic; "
+           "median + bvh2 is the homework's binary BVH",
+           &make_bvh_accelerator},
           {"embree",
            "Intel Embree 3 (embree.robust=false, embree.quality=low|medium|high, "
            "embree.refine=true)",

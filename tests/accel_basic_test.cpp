@@ -243,7 +243,7 @@ TEST_P(AccelBasic, StatsAreFilled) {
     EXPECT_GT(s.sah_cost, 0.0);
   }
   if (GetParam() == "bvh") {
-    EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
+    EXPECT_LE(s.nodes, 2 * s.leaves - 1);  // every interior node has two or more children
     EXPECT_GT(s.max_depth, 0u);
     EXPECT_GT(s.bytes, 0u);
     EXPECT_LT(s.sah_cost, 101.0);  // better than testing everything

@@ -49,7 +49,9 @@ TEST(AccelBvh, TreeInvariantsHoldForEveryLeafSize) {
     const Bvh2 bvh = build_median_split(prims, MedianSplitOptions{leaf});
     EXPECT_NO_THROW(check_bvh2(bvh, prims)) << "leaf size " << leaf;
     for (const Bvh2Node& n : bvh.nodes) {
-      if (n.is_leaf()) EXPECT_LE(n.count, leaf);
+      if (n.is_leaf()) {
+        EXPECT_LE(n.count, leaf);
+      }
     }
     const AccelStats s = bvh2_stats(bvh);
     EXPECT_EQ(s.nodes, bvh.nodes.size());

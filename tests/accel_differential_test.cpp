@@ -2,6 +2,9 @@
 // and every shared CS184 scene, with random rays and rays aimed at vertices, edges and
 // silhouettes.
 // - bvh vs brute: identical answers (same t bits, u, v, primitive; the tie rule is shared).
+// - every other bvh split (median, sah, sbvh) x layout (bvh2, bvh4, bvh8), and every SIMD
+//   instruction set this CPU runs: identical answers to the default bvh on every ray, so each
+//   of them equals brute force too.
 // - bvh vs embree: the DESIGN rule, judged by the double-precision oracle: no HARD mismatch;
 //   ties and rounding-decided (ambiguous) rays are counted and printed.
 // - occluded() agrees with intersect() on every backend.
@@ -13,7 +16,8 @@
 // primitives), about 3.5k on CBbunny (28k triangles, where all 120k would be 3.4e9 tests). The Long
 // variant (PRISM_LONG_TESTS=1) runs 1M random + 100k feature rays per scene with ten times the
 // brute-force budget; RobustEmbreeAgrees repeats a smaller run with embree.robust=true (bvh vs
-// embree only).
+// embree only). Each scene also runs every other bvh configuration (3 splits x 3 layouts, and
+// each instruction set) on all rays against the default bvh: about as much again as bvh itself.
 
 #include <gtest/gtest.h>
 
@@ -27,6 +31,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "accel/bvh/cpu_features.h"
 #include "accel/validation/double_oracle.h"
 #include "accel/validation/hit_comparison.h"
 #include "accel/validation/ray_sets.h"
@@ -46,10 +51,11 @@ struct RunConfig {
   size_t feature_rays;
   double brute_tests;  ///< rays x primitives brute force may cost per scene (0: no brute force)
   bool embree_robust;
+  bool bvh_variants;  ///< also every other bvh split, layout and instruction set
 };
-constexpr RunConfig kDefaultRun{100'000, 20'000, 1e8, false};
-constexpr RunConfig kLongRun{1'000'000, 100'000, 1e9, false};
-constexpr RunConfig kRobustEmbreeRun{20'000, 5'000, 0.0, true};
+constexpr RunConfig kDefaultRun{100'000, 20'000, 1e8, false, true};
+constexpr RunConfig kLongRun{1'000'000, 100'000, 1e9, false, true};
+constexpr RunConfig kRobustEmbreeRun{20'000, 5'000, 0.0, true, false};
 
 /// The Cornell box built in code: five walls as quads sharing corner vertices (one mesh), a
 /// light quad coplanar with the ceiling (a second mesh: exact ties with the ceiling), and two
@@ -124,6 +130,34 @@ std::optional<SceneGeometry> load_geometry(const std::string& name) {
   const auto path = test::cs184_scene(name.substr(6) + ".dae");
   if (!path) return std::nullopt;
   return load_scene(*path).geometry;
+}
+
+/// A non-default configuration of the bvh backend.
+struct BvhVariant {
+  std::string name;
+  ParamSet params;
+};
+
+/// Every split x layout, and the default split and layout with each instruction set.
+std::vector<BvhVariant> bvh_variants() {
+  std::vector<BvhVariant> out;
+  for (const char* split : {"median", "sah", "sbvh"}) {
+    for (const char* layout : {"bvh2", "bvh4", "bvh8"}) {
+      BvhVariant v{std::string(split) + "/" + layout, {}};
+      v.params.set("bvh.split", split);
+      v.params.set("bvh.layout", layout);
+      out.push_back(std::move(v));
+    }
+  }
+  std::vector<std::string> isas = {"generic"};
+  if (cpu_has_avx2()) isas.emplace_back("avx2");
+  if (cpu_has_avx512()) isas.emplace_back("avx512");
+  for (const std::string& isa : isas) {
+    BvhVariant v{"default/" + isa, {}};
+    v.params.set("bvh.isa", isa);
+    out.push_back(std::move(v));
+  }
+  return out;
 }
 
 /// One backend's answers to a list of rays.
@@ -229,6 +263,25 @@ void run_differential(const std::string& name, const RunConfig& run) {
   // them); a flood of them would mean the classifier lets bugs through as "ambiguous".
   EXPECT_LE(tolerant_random.ambiguous, run.random_rays / 1000) << tolerant_random.first_ambiguous;
   EXPECT_GT(hits, rays.size() / 20) << "the rays barely touch the scene";
+
+  // Every other bvh configuration against the default one, on every ray.
+  for (const BvhVariant& variant : run.bvh_variants ? bvh_variants() : std::vector<BvhVariant>{}) {
+    const auto accel = accelerator_registry().create("bvh", variant.params);
+    accel->build(geometry);
+    const Answers answers = answer(*accel, rays);
+    AgreementTally same_as_default;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const HitComparison c = compare_exact(answers.hits[i], bvh_answers.hits[i]);
+      same_as_default.add(c, c.agreement == HitAgreement::kSame ? "" : format_ray(rays[i]));
+    }
+    EXPECT_EQ(same_as_default.same, rays.size())
+        << "bvh " << variant.name << " vs default bvh: " << same_as_default.summary()
+        << ", first: " << same_as_default.first_hard << same_as_default.first_tie;
+    const OcclusionCheck check = check_occlusion(answers, rays);
+    EXPECT_EQ(check.mismatches, 0u)
+        << "bvh " << variant.name
+        << ": occluded() disagrees with intersect(), first: " << check.first;
+  }
 
   const std::vector<std::pair<const char*, OcclusionCheck>> occlusion = {
       {"brute", check_occlusion(brute_answers, brute_rays)},

@@ -1,0 +1,38 @@
+#pragma once
+
+// The wide BVH (2, 4 or 8 children per node) that the traversal kernels walk, and the collapse
+// of a binary tree into it.
+
+#include <cstdint>
+#include <vector>
+
+#include "accel/accelerator.h"
+#include "accel/bvh/build_reference.h"
+#include "accel/bvh/triangle_block.h"
+#include "accel/bvh/wide_node.h"
+
+namespace prism {
+
+/// A binary tree collapsed into W-wide nodes, with the leaf primitives copied into blocks.
+template <int W>
+struct WideBvh {
+  std::vector<WideNode<W>> nodes;
+  std::vector<TriangleBlock> triangle_blocks;
+  std::vector<SphereBlock> sphere_blocks;
+  uint32_t root = 0;         ///< a node index or a leaf reference
+  bool empty = true;         ///< no primitives: every query misses
+  float scene_scale = 0.0f;  ///< largest |coordinate| of the bounds (for the traversal's padding)
+  AccelStats stats;  ///< nodes, leaves, depth, bytes, SAH cost (build_ms left to the caller)
+};
+
+/// Collapses `binary` (built over `geometry`) into a W-wide tree: each wide node adopts the
+/// children of its binary descendants with the largest area until it has W children. Leaves
+/// are copied into triangle or sphere blocks (mixed leaves are not allowed). Parallel on oneTBB.
+template <int W>
+WideBvh<W> collapse_to_wide(const BinaryBvh& binary, const SceneGeometry& geometry);
+
+extern template WideBvh<2> collapse_to_wide<2>(const BinaryBvh&, const SceneGeometry&);
+extern template WideBvh<4> collapse_to_wide<4>(const BinaryBvh&, const SceneGeometry&);
+extern template WideBvh<8> collapse_to_wide<8>(const BinaryBvh&, const SceneGeometry&);
+
+}  // namespace prism

@@ -1,0 +1,43 @@
+// Helpers shared by the wide BVH's kernels. No include guard and no includes on purpose: each
+// wide_traversal_<isa>.cpp includes this file first, inside its own namespace (see
+// wide_kernel_body.h), so nothing here is shared with code built for another instruction set.
+
+#define PRISM_KERNEL_INLINE inline __attribute__((always_inline))
+
+/// comes_before() of accel/ray_query.h: smaller t, then lower geom_id, then lower prim_id.
+PRISM_KERNEL_INLINE bool comes_before_hit(float t, uint32_t geom_id, uint32_t prim_id,
+                                          const WideHit& best) {
+  if (t != best.t) return t < best.t;
+  if (geom_id != best.geom_id) return geom_id < best.geom_id;
+  return prim_id < best.prim_id;
+}
+
+PRISM_KERNEL_INLINE int lowest_lane(uint32_t mask) { return __builtin_ctz(mask); }
+
+// Box padding in units of the larger of |origin| and the scene's extent. The watertight test
+// works on vertices translated to the ray origin, so its rounding moves a hit by a few ulps of
+// that magnitude; the slab test's own rounding is of the same order. 32 ulps covers both with
+// room to spare and costs nothing measurable.
+inline constexpr float kPaddingUlps = 32.0f / (1 << 24);
+// Direction components below this count as this (with their sign), so that 1 / d is finite
+// and plane * (1 / d) has no 0 * inf.
+inline constexpr float kMinDirection = 1e-18f;
+
+/// Per-ray constants of one query, filled by each instruction set's setup_ray(ray, scene_scale,
+/// setup).
+struct RaySetup {
+  float org[3];
+  float tmin, tmax;
+  /// Slab test: plane * inv[a] + near_offset[a] (far_offset[a]) is the padded entry (exit)
+  /// distance of the near (far) plane on axis a.
+  float inv[3], near_offset[3], far_offset[3];
+  /// Bit a is set when the direction is negative on axis a: the near plane is then the upper.
+  unsigned octant;
+  /// The watertight test's axes and shear, computed exactly as WatertightRay does.
+  int kx, ky, kz;
+  float shear_x, shear_y, shear_z;
+};
+
+// Each level pushes at most W - 1 siblings and the builders bound the depth.
+template <int W>
+inline constexpr int kStackSize = kMaxBvhDepth*(W - 1) + 1;

@@ -1,0 +1,373 @@
+// Box and triangle tests of the wide BVH for AVX2 and AVX-512 (VL). No include guard and no
+// includes on purpose: wide_traversal_avx2.cpp and wide_traversal_avx512.cpp each include it
+// once inside their own namespace (see wide_kernel_body.h), after <immintrin.h>.
+//
+// The triangle test must give the same bits as intersect_triangle(): the same operations in the
+// same order, and these files are compiled with -ffp-contract=off so that no multiply-add is
+// fused behind our back (the FMAs in the box test are explicit and only move padded bounds).
+
+/// The per-ray constants, four lanes at a time. The watertight test's axes and shear are
+/// computed exactly as WatertightRay does (same comparisons, one IEEE division, same products).
+PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& s) {
+  // Ray is {origin, tmin, direction, tmax}: two unaligned loads fetch it all.
+  const __m128 o = _mm_loadu_ps(&ray.origin.x);
+  const __m128 d = _mm_loadu_ps(&ray.direction.x);
+  const __m128 sign = _mm_set1_ps(-0.0f);
+  const __m128 abs_d = _mm_andnot_ps(sign, d);
+  alignas(16) float dv[4], ad[4];
+  _mm_store_ps(dv, d);
+  _mm_store_ps(ad, abs_d);
+  s.tmin = ray.tmin;
+  s.tmax = ray.tmax;
+  s.kz = (ad[0] >= ad[1] && ad[0] >= ad[2]) ? 0 : (ad[1] >= ad[2] ? 1 : 2);
+  s.kx = s.kz == 2 ? 0 : s.kz + 1;
+  s.ky = s.kx == 2 ? 0 : s.kx + 1;
+  if (dv[s.kz] < 0.0f) {
+    const int k = s.kx;
+    s.kx = s.ky;
+    s.ky = k;
+  }
+  // Lane 3 carries d[kz], so one division yields 1 / d per axis and the shear's 1 / d[kz].
+  const __m128 tiny = _mm_cmplt_ps(abs_d, _mm_set1_ps(kMinDirection));
+  __m128 dd = _mm_blendv_ps(d, _mm_or_ps(_mm_and_ps(d, sign), _mm_set1_ps(kMinDirection)), tiny);
+  dd = _mm_insert_ps(dd, _mm_set_ss(dv[s.kz]), 0x30);
+  const __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), dd);
+  alignas(16) float iv[4];
+  _mm_store_ps(iv, inv);
+  s.shear_z = iv[3];
+  s.shear_x = -dv[s.kx] * s.shear_z;
+  s.shear_y = -dv[s.ky] * s.shear_z;
+
+  const __m128 abs_o = _mm_andnot_ps(sign, o);
+  __m128 scale = _mm_max_ps(abs_o, _mm_shuffle_ps(abs_o, abs_o, _MM_SHUFFLE(3, 0, 2, 1)));
+  scale = _mm_max_ps(scale, _mm_shuffle_ps(abs_o, abs_o, _MM_SHUFFLE(3, 1, 0, 2)));
+  scale = _mm_max_ps(scale, _mm_set1_ps(scene_scale));
+  const __m128 pad =
+      _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(kPaddingUlps), scale), _mm_andnot_ps(sign, inv));
+  const __m128 base = _mm_mul_ps(_mm_xor_ps(o, sign), inv);
+  alignas(16) float org[4], near_offset[4], far_offset[4];
+  _mm_store_ps(org, o);
+  _mm_store_ps(near_offset, _mm_sub_ps(base, pad));
+  _mm_store_ps(far_offset, _mm_add_ps(base, pad));
+  for (int a = 0; a < 3; ++a) {
+    s.org[a] = org[a];
+    s.inv[a] = iv[a];
+    s.near_offset[a] = near_offset[a];
+    s.far_offset[a] = far_offset[a];
+  }
+  s.octant = static_cast<unsigned>(_mm_movemask_ps(inv)) & 7u;
+}
+
+/// The box test's per-ray constants. The octant is a template parameter, so the near and far
+/// planes of each axis are fixed offsets in the node.
+template <int W, unsigned kOctant>
+struct NodeRay;
+
+template <unsigned kOctant>
+struct NodeRay<8, kOctant> {
+  explicit NodeRay(const RaySetup& s) : tmin(_mm256_set1_ps(s.tmin)) {
+    for (int a = 0; a < 3; ++a) {
+      inv[a] = _mm256_set1_ps(s.inv[a]);
+      near_offset[a] = _mm256_set1_ps(s.near_offset[a]);
+      far_offset[a] = _mm256_set1_ps(s.far_offset[a]);
+    }
+  }
+  __m256 inv[3], near_offset[3], far_offset[3];
+  __m256 tmin;
+};
+
+template <unsigned kOctant>
+struct NodeRay<4, kOctant> {
+  explicit NodeRay(const RaySetup& s) : tmin(_mm_set1_ps(s.tmin)) {
+    for (int a = 0; a < 3; ++a) {
+      inv[a] = _mm_set1_ps(s.inv[a]);
+      near_offset[a] = _mm_set1_ps(s.near_offset[a]);
+      far_offset[a] = _mm_set1_ps(s.far_offset[a]);
+    }
+  }
+  __m128 inv[3], near_offset[3], far_offset[3];
+  __m128 tmin;
+};
+
+/// The binary layout uses the low two lanes of the 4-wide test.
+template <unsigned kOctant>
+struct NodeRay<2, kOctant> : NodeRay<4, kOctant> {
+  using NodeRay<4, kOctant>::NodeRay;
+};
+
+template <unsigned kOctant>
+inline constexpr int kNearPlane[3] = {0 + int(kOctant & 1), 2 + int((kOctant >> 1) & 1),
+                                      4 + int((kOctant >> 2) & 1)};
+template <unsigned kOctant>
+inline constexpr int kFarPlane[3] = {1 - int(kOctant & 1), 3 - int((kOctant >> 1) & 1),
+                                     5 - int((kOctant >> 2) & 1)};
+
+/// Slab test of all children: returns the mask of children the ray enters in [tmin, tmax],
+/// with their padded entry distances in tnear.
+template <unsigned kOctant>
+PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<8>& node, const NodeRay<8, kOctant>& ray,
+                                            float tmax, float* tnear) {
+  __m256 tn = ray.tmin;
+  __m256 tf = _mm256_set1_ps(tmax);
+  for (int a = 0; a < 3; ++a) {
+    const __m256 n = _mm256_fmadd_ps(_mm256_load_ps(node.bounds[kNearPlane<kOctant>[a]]),
+                                     ray.inv[a], ray.near_offset[a]);
+    const __m256 f = _mm256_fmadd_ps(_mm256_load_ps(node.bounds[kFarPlane<kOctant>[a]]), ray.inv[a],
+                                     ray.far_offset[a]);
+    tn = _mm256_max_ps(n, tn);
+    tf = _mm256_min_ps(f, tf);
+  }
+  _mm256_store_ps(tnear, tn);
+#ifdef __AVX512VL__
+  return _mm256_cmp_ps_mask(tn, tf, _CMP_LE_OQ);
+#else
+  return static_cast<uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ)));
+#endif
+}
+
+template <unsigned kOctant>
+PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<4>& node, const NodeRay<4, kOctant>& ray,
+                                            float tmax, float* tnear) {
+  __m128 tn = ray.tmin;
+  __m128 tf = _mm_set1_ps(tmax);
+  for (int a = 0; a < 3; ++a) {
+    const __m128 n = _mm_fmadd_ps(_mm_load_ps(node.bounds[kNearPlane<kOctant>[a]]), ray.inv[a],
+                                  ray.near_offset[a]);
+    const __m128 f = _mm_fmadd_ps(_mm_load_ps(node.bounds[kFarPlane<kOctant>[a]]), ray.inv[a],
+                                  ray.far_offset[a]);
+    tn = _mm_max_ps(n, tn);
+    tf = _mm_min_ps(f, tf);
+  }
+  _mm_store_ps(tnear, tn);
+#ifdef __AVX512VL__
+  return _mm_cmp_ps_mask(tn, tf, _CMP_LE_OQ);
+#else
+  return static_cast<uint32_t>(_mm_movemask_ps(_mm_cmp_ps(tn, tf, _CMP_LE_OQ)));
+#endif
+}
+
+template <unsigned kOctant>
+PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<2>& node, const NodeRay<2, kOctant>& ray,
+                                            float tmax, float* tnear) {
+  // Two floats per plane; the upper lanes are zero and masked off below.
+  auto load2 = [](const float* p) {
+    return _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)));
+  };
+  __m128 tn = ray.tmin;
+  __m128 tf = _mm_set1_ps(tmax);
+  for (int a = 0; a < 3; ++a) {
+    const __m128 n =
+        _mm_fmadd_ps(load2(node.bounds[kNearPlane<kOctant>[a]]), ray.inv[a], ray.near_offset[a]);
+    const __m128 f =
+        _mm_fmadd_ps(load2(node.bounds[kFarPlane<kOctant>[a]]), ray.inv[a], ray.far_offset[a]);
+    tn = _mm_max_ps(n, tn);
+    tf = _mm_min_ps(f, tf);
+  }
+  alignas(16) float tn4[4];
+  _mm_store_ps(tn4, tn);
+  tnear[0] = tn4[0];
+  tnear[1] = tn4[1];
+  return static_cast<uint32_t>(_mm_movemask_ps(_mm_cmp_ps(tn, tf, _CMP_LE_OQ))) & 3u;
+}
+
+/// The watertight test's per-ray constants, broadcast; the origin is permuted like the axes.
+struct TriangleRay {
+  TriangleRay(const RaySetup& q, const Ray& r)
+      : ox(_mm256_set1_ps(q.org[q.kx])),
+        oy(_mm256_set1_ps(q.org[q.ky])),
+        oz(_mm256_set1_ps(q.org[q.kz])),
+        sx(_mm256_set1_ps(q.shear_x)),
+        sy(_mm256_set1_ps(q.shear_y)),
+        sz(_mm256_set1_ps(q.shear_z)),
+        tmin(_mm256_set1_ps(q.tmin)),
+        kx(q.kx),
+        ky(q.ky),
+        kz(q.kz),
+        ray(r) {}
+  __m256 ox, oy, oz, sx, sy, sz, tmin;
+  int kx, ky, kz;
+  const Ray& ray;  ///< for the scalar test of lanes with a zero edge function
+};
+
+// One template serves one block (4 lanes, __m128) and two blocks at once (8 lanes, __m256);
+// these overloads are all it needs.
+inline __m128 vadd(__m128 a, __m128 b) { return _mm_add_ps(a, b); }
+inline __m256 vadd(__m256 a, __m256 b) { return _mm256_add_ps(a, b); }
+inline __m128 vsub(__m128 a, __m128 b) { return _mm_sub_ps(a, b); }
+inline __m256 vsub(__m256 a, __m256 b) { return _mm256_sub_ps(a, b); }
+inline __m128 vmul(__m128 a, __m128 b) { return _mm_mul_ps(a, b); }
+inline __m256 vmul(__m256 a, __m256 b) { return _mm256_mul_ps(a, b); }
+inline __m128 vdiv(__m128 a, __m128 b) { return _mm_div_ps(a, b); }
+inline __m256 vdiv(__m256 a, __m256 b) { return _mm256_div_ps(a, b); }
+inline __m128 vor(__m128 a, __m128 b) { return _mm_or_ps(a, b); }
+inline __m256 vor(__m256 a, __m256 b) { return _mm256_or_ps(a, b); }
+inline __m128 vand(__m128 a, __m128 b) { return _mm_and_ps(a, b); }
+inline __m256 vand(__m256 a, __m256 b) { return _mm256_and_ps(a, b); }
+inline __m128 vandnot(__m128 a, __m128 b) { return _mm_andnot_ps(a, b); }
+inline __m256 vandnot(__m256 a, __m256 b) { return _mm256_andnot_ps(a, b); }
+inline __m128 vmin(__m128 a, __m128 b) { return _mm_min_ps(a, b); }
+inline __m256 vmin(__m256 a, __m256 b) { return _mm256_min_ps(a, b); }
+inline __m128 vblend(__m128 a, __m128 b, __m128 m) { return _mm_blendv_ps(a, b, m); }
+inline __m256 vblend(__m256 a, __m256 b, __m256 m) { return _mm256_blendv_ps(a, b, m); }
+inline int vmask(__m128 a) { return _mm_movemask_ps(a); }
+inline int vmask(__m256 a) { return _mm256_movemask_ps(a); }
+inline void vstore(float* p, __m128 a) { _mm_store_ps(p, a); }
+inline void vstore(float* p, __m256 a) { _mm256_store_ps(p, a); }
+template <int kPredicate>
+inline __m128 vcmp(__m128 a, __m128 b) {
+  return _mm_cmp_ps(a, b, kPredicate);
+}
+template <int kPredicate>
+inline __m256 vcmp(__m256 a, __m256 b) {
+  return _mm256_cmp_ps(a, b, kPredicate);
+}
+
+template <typename V>
+struct Lanes;
+
+template <>
+struct Lanes<__m128> {
+  static constexpr int kCount = 4;
+  static __m128 narrow(__m256 a) { return _mm256_castps256_ps128(a); }
+  static __m128 set1(float x) { return _mm_set1_ps(x); }
+  /// Every bit of a lane set to the lane's sign bit.
+  static __m128 sign_mask(__m128 a) {
+    return _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(a), 31));
+  }
+  static __m128 load(const TriangleBlock* const* blocks, int vertex, int axis) {
+    return _mm_load_ps(blocks[0]->p[vertex][axis]);
+  }
+  static __m128 horizontal_min(__m128 a) {
+    const __m128 m = _mm_min_ps(a, _mm_shuffle_ps(a, a, _MM_SHUFFLE(2, 3, 0, 1)));
+    return _mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+  }
+};
+
+template <>
+struct Lanes<__m256> {
+  static constexpr int kCount = 8;
+  static __m256 narrow(__m256 a) { return a; }
+  static __m256 set1(float x) { return _mm256_set1_ps(x); }
+  static __m256 sign_mask(__m256 a) {
+    return _mm256_castsi256_ps(_mm256_srai_epi32(_mm256_castps_si256(a), 31));
+  }
+  static __m256 load(const TriangleBlock* const* blocks, int vertex, int axis) {
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(blocks[0]->p[vertex][axis])),
+                                _mm_load_ps(blocks[1]->p[vertex][axis]), 1);
+  }
+  static __m256 horizontal_min(__m256 a) {
+    __m256 m = _mm256_min_ps(a, _mm256_permute2f128_ps(a, a, 1));
+    m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
+    return _mm256_min_ps(m, _mm256_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+  }
+};
+
+/// Watertight triangle tests on the lanes of one or two blocks at once, in
+/// intersect_triangle()'s order of operations. Lanes with an exactly zero edge function go
+/// through the scalar test (its double-precision path). Replaces `hit` by a hit in
+/// [tmin, tmax] that comes before it and returns whether it did (any_hit: whether any lane hits).
+template <typename V>
+PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
+                                             const TriangleRay& ray, float tmax, WideHit& hit,
+                                             bool any_hit) {
+  using L = Lanes<V>;
+  const V oz = L::narrow(ray.oz), ox = L::narrow(ray.ox), oy = L::narrow(ray.oy);
+  const V sx = L::narrow(ray.sx), sy = L::narrow(ray.sy);
+  const V az = vsub(L::load(blocks, 0, ray.kz), oz);
+  const V bz = vsub(L::load(blocks, 1, ray.kz), oz);
+  const V cz = vsub(L::load(blocks, 2, ray.kz), oz);
+  const V ax = vadd(vsub(L::load(blocks, 0, ray.kx), ox), vmul(sx, az));
+  const V ay = vadd(vsub(L::load(blocks, 0, ray.ky), oy), vmul(sy, az));
+  const V bx = vadd(vsub(L::load(blocks, 1, ray.kx), ox), vmul(sx, bz));
+  const V by = vadd(vsub(L::load(blocks, 1, ray.ky), oy), vmul(sy, bz));
+  const V cx = vadd(vsub(L::load(blocks, 2, ray.kx), ox), vmul(sx, cz));
+  const V cy = vadd(vsub(L::load(blocks, 2, ray.ky), oy), vmul(sy, cz));
+
+  const V e0 = vsub(vmul(bx, cy), vmul(by, cx));
+  const V e1 = vsub(vmul(cx, ay), vmul(cy, ax));
+  const V e2 = vsub(vmul(ax, by), vmul(ay, bx));
+  // Lanes with an edge function exactly zero (or NaN) take the scalar test, which decides
+  // them in double precision; for all others the sign bit is the sign, so mixed signs (the ray
+  // passes outside) are an OR of the signs without an AND of them.
+  const V zero = L::set1(0.0f);
+  const V special =
+      vor(vor(vcmp<_CMP_EQ_UQ>(e0, zero), vcmp<_CMP_EQ_UQ>(e1, zero)), vcmp<_CMP_EQ_UQ>(e2, zero));
+  const V outside = vandnot(vand(vand(e0, e1), e2), vor(vor(e0, e1), e2));  // sign bit only
+  constexpr int kAll = (1 << L::kCount) - 1;
+  const int special_mask = vmask(special);
+  // Most blocks a ray reaches miss all their triangles: stop before t and the division.
+  if (vmask(outside) == kAll && special_mask == 0) return false;
+  const V det = vadd(vadd(e0, e1), e2);
+  const V t_scaled = vmul(vadd(vadd(vmul(e0, az), vmul(e1, bz)), vmul(e2, cz)), L::narrow(ray.sz));
+  const V inv_det = vdiv(L::set1(1.0f), det);
+  const V t = vmul(t_scaled, inv_det);
+  V ok = vand(vcmp<_CMP_NEQ_UQ>(det, zero),
+              vand(vcmp<_CMP_GE_OQ>(t, L::narrow(ray.tmin)), vcmp<_CMP_LE_OQ>(t, L::set1(tmax))));
+  ok = vandnot(vor(L::sign_mask(outside), special), ok);
+  const int mask = vmask(ok);
+  auto geom = [&](int lane) { return blocks[lane >> 2]->geom_id[lane & 3]; };
+  auto prim = [&](int lane) { return blocks[lane >> 2]->prim_id[lane & 3]; };
+  bool found = false;
+  if (mask != 0) {
+    if (any_hit) return true;
+    const V tm = vblend(L::set1(kInfinity), t, ok);
+    uint32_t nearest =
+        static_cast<uint32_t>(vmask(vcmp<_CMP_EQ_OQ>(tm, L::horizontal_min(tm))) & mask);
+    int lane = lowest_lane(nearest);
+    // Several lanes at exactly the same t: the tie order decides, as in brute force.
+    for (nearest &= nearest - 1; nearest != 0; nearest &= nearest - 1) {
+      const int other = lowest_lane(nearest);
+      if (geom(other) < geom(lane) || (geom(other) == geom(lane) && prim(other) < prim(lane))) {
+        lane = other;
+      }
+    }
+    alignas(32) float ts[L::kCount];
+    vstore(ts, t);
+    if (comes_before_hit(ts[lane], geom(lane), prim(lane), hit)) {
+      alignas(32) float us[L::kCount], vs[L::kCount];
+      vstore(us, vmul(e1, inv_det));
+      vstore(vs, vmul(e2, inv_det));
+      tmax = ts[lane];
+      hit = {ts[lane], us[lane], vs[lane], geom(lane), prim(lane)};
+      found = true;
+    }
+  }
+  if (special_mask != 0) {
+    WatertightRay w(ray.ray);
+    for (unsigned z = static_cast<unsigned>(special_mask); z != 0; z &= z - 1) {
+      const int lane = lowest_lane(z);
+      w.tmax = tmax;
+      PrimitiveHit h;
+      if (!intersect_block_lane(w, *blocks[lane >> 2], lane & 3, h)) continue;
+      if (any_hit) return true;
+      if (!comes_before_hit(h.t, geom(lane), prim(lane), hit)) continue;
+      tmax = h.t;
+      hit = {h.t, h.u, h.v, geom(lane), prim(lane)};
+      found = true;
+    }
+  }
+  return found;
+}
+
+/// The blocks of one leaf: two at a time in 8 lanes, an odd last one in 4. Same contract as
+/// intersect_triangles(). Not inlined: the traversal loop is instantiated once per ray octant,
+/// and eight copies of the triangle test would not fit the instruction cache together.
+__attribute__((noinline)) bool intersect_blocks(const TriangleBlock* blocks, uint32_t count,
+                                                const TriangleRay& ray, float tmax, WideHit& hit,
+                                                bool any_hit) {
+  bool found = false;
+  uint32_t b = 0;
+  for (; b + 2 <= count; b += 2) {
+    const TriangleBlock* pair[2] = {blocks + b, blocks + b + 1};
+    if (intersect_triangles<__m256>(pair, ray, tmax, hit, any_hit)) {
+      if (any_hit) return true;
+      found = true;
+      tmax = hit.t;
+    }
+  }
+  if (b < count) {
+    const TriangleBlock* single[1] = {blocks + b};
+    if (intersect_triangles<__m128>(single, ray, tmax, hit, any_hit)) found = true;
+  }
+  return found;
+}

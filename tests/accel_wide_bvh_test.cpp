@@ -1,0 +1,457 @@
+// The custom wide BVH against brute force, bit for bit, for every split, layout and instruction
+// set this CPU runs; plus builder invariants and parameter handling.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "accel/brute/brute_accelerator.h"
+#include "accel/bvh/binned_sah_builder.h"
+#include "accel/bvh/cpu_features.h"
+#include "accel/bvh/spatial_split_builder.h"
+#include "accel/bvh/wide_bvh.h"
+#include "accel/bvh/wide_bvh_accelerator.h"
+#include "accel/validation/hit_comparison.h"
+#include "accel/validation/ray_sets.h"
+#include "core/error.h"
+#include "tests/test_support.h"
+
+namespace prism {
+namespace {
+
+// --- scenes built in code -------------------------------------------------------------------
+
+TriangleMesh uv_sphere(int rings, int segments, Vec3 center, float radius) {
+  TriangleMesh m;
+  m.name = "uv_sphere";
+  for (int r = 0; r <= rings; ++r) {
+    const float theta = kPi * static_cast<float>(r) / static_cast<float>(rings);
+    for (int s = 0; s < segments; ++s) {
+      const float phi = 2.0f * kPi * static_cast<float>(s) / static_cast<float>(segments);
+      m.positions.push_back(center + radius * Vec3(std::sin(theta) * std::cos(phi),
+                                                   std::sin(theta) * std::sin(phi),
+                                                   std::cos(theta)));
+    }
+  }
+  for (int r = 0; r < rings; ++r) {
+    for (int s = 0; s < segments; ++s) {
+      const auto i0 = static_cast<uint32_t>(r * segments + s);
+      const auto i1 = static_cast<uint32_t>(r * segments + (s + 1) % segments);
+      const auto i2 = i0 + static_cast<uint32_t>(segments);
+      const auto i3 = i1 + static_cast<uint32_t>(segments);
+      m.triangles.push_back({i0, i2, i1});
+      m.triangles.push_back({i1, i2, i3});
+    }
+  }
+  return m;
+}
+
+TriangleMesh soup(size_t count, uint64_t seed, float size) {
+  std::mt19937 rng(static_cast<uint32_t>(seed));
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  TriangleMesh m;
+  m.name = "soup";
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3 c(u(rng), u(rng), u(rng));
+    for (int k = 0; k < 3; ++k) m.positions.push_back(c + size * Vec3(u(rng), u(rng), u(rng)));
+    const auto b = static_cast<uint32_t>(3 * i);
+    m.triangles.push_back({b, b + 1, b + 2});
+  }
+  return m;
+}
+
+// Long thin triangles crossing the box: what spatial splits are for.
+TriangleMesh slivers(size_t count, uint64_t seed) {
+  std::mt19937 rng(static_cast<uint32_t>(seed));
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  TriangleMesh m;
+  m.name = "slivers";
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3 a(u(rng), u(rng), u(rng));
+    const Vec3 b = -a + 0.2f * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 w = 0.002f * Vec3(u(rng), u(rng), u(rng));
+    m.positions.insert(m.positions.end(), {a, b, a + w});
+    const auto base = static_cast<uint32_t>(3 * i);
+    m.triangles.push_back({base, base + 1, base + 2});
+  }
+  return m;
+}
+
+// A flat grid in z = 0 with shared edges and vertices, plus an exact duplicate of its first
+// cell (coplanar copies are exact ties) and axis-aligned walls that make degenerate boxes.
+TriangleMesh grid_with_ties(int n) {
+  TriangleMesh m;
+  m.name = "grid";
+  for (int y = 0; y <= n; ++y) {
+    for (int x = 0; x <= n; ++x) {
+      m.positions.emplace_back(-1.0f + 2.0f * static_cast<float>(x) / static_cast<float>(n),
+                               -1.0f + 2.0f * static_cast<float>(y) / static_cast<float>(n), 0.0f);
+    }
+  }
+  const auto row = static_cast<uint32_t>(n + 1);
+  for (uint32_t y = 0; y < static_cast<uint32_t>(n); ++y) {
+    for (uint32_t x = 0; x < static_cast<uint32_t>(n); ++x) {
+      const uint32_t i = y * row + x;
+      m.triangles.push_back({i, i + 1, i + row + 1});
+      m.triangles.push_back({i, i + row + 1, i + row});
+    }
+  }
+  m.triangles.push_back(m.triangles[0]);
+  m.triangles.push_back(m.triangles[1]);
+  const auto base = static_cast<uint32_t>(m.positions.size());
+  m.positions.insert(m.positions.end(),
+                     {Vec3(0.5f, -1, -1), Vec3(0.5f, 1, -1), Vec3(0.5f, 1, 1), Vec3(0.5f, -1, 1)});
+  m.triangles.push_back({base, base + 1, base + 2});
+  m.triangles.push_back({base, base + 2, base + 3});
+  return m;
+}
+
+struct NamedScene {
+  std::string name;
+  SceneGeometry geometry;
+};
+
+std::vector<NamedScene> make_scenes() {
+  std::vector<NamedScene> scenes;
+  {
+    NamedScene s{"sphere", {}};
+    s.geometry.meshes.push_back(uv_sphere(40, 60, Vec3(0.0f), 1.0f));
+    scenes.push_back(std::move(s));
+  }
+  {
+    NamedScene s{"soup", {}};
+    s.geometry.meshes.push_back(soup(3000, 7, 0.15f));
+    scenes.push_back(std::move(s));
+  }
+  {
+    NamedScene s{"slivers", {}};
+    s.geometry.meshes.push_back(slivers(1500, 11));
+    scenes.push_back(std::move(s));
+  }
+  {
+    NamedScene s{"grid_ties", {}};
+    s.geometry.meshes.push_back(grid_with_ties(24));
+    scenes.push_back(std::move(s));
+  }
+  {
+    // Two meshes, far from the origin, with analytic spheres between them.
+    NamedScene s{"mixed_offset", {}};
+    const Vec3 offset(1000.0f, -500.0f, 250.0f);
+    s.geometry.meshes.push_back(uv_sphere(12, 16, offset + Vec3(-2, 0, 0), 1.0f));
+    TriangleMesh g = soup(400, 3, 0.3f);
+    for (Vec3& p : g.positions) p = offset + 3.0f * p;
+    s.geometry.meshes.push_back(std::move(g));
+    for (int i = 0; i < 37; ++i) {
+      s.geometry.spheres.push_back(
+          {offset + Vec3(static_cast<float>(i % 6) - 2.5f, static_cast<float>(i / 6) - 3.0f, 0.5f),
+           0.3f + 0.01f * static_cast<float>(i), 0});
+    }
+    scenes.push_back(std::move(s));
+  }
+  for (auto& s : scenes) s.geometry.finalize();
+  return scenes;
+}
+
+std::vector<std::string> isas() {
+  std::vector<std::string> out{"generic"};
+  if (cpu_has_avx2()) out.emplace_back("avx2");
+  if (cpu_has_avx512()) out.emplace_back("avx512");
+  return out;
+}
+
+ParamSet bvh_params(const std::string& split, const std::string& layout, const std::string& isa) {
+  ParamSet p;
+  p.set("bvh.split", split);
+  p.set("bvh.layout", layout);
+  p.set("bvh.isa", isa);
+  return p;
+}
+
+bool same_bits(float a, float b) {
+  return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b);
+}
+
+// --- bit-exact agreement with brute force -----------------------------------------------------
+
+TEST(AccelWideBvh, MatchesBruteForceBitForBitEverySplitLayoutAndIsa) {
+  const std::vector<NamedScene> scenes = make_scenes();
+  for (const NamedScene& scene : scenes) {
+    BruteAccelerator brute{ParamSet()};
+    brute.build(scene.geometry);
+    std::vector<Ray> rays = random_rays(scene.geometry.bounds(), 1500, 42);
+    const std::vector<Ray> features = feature_rays(scene.geometry, 1500, 43);
+    rays.insert(rays.end(), features.begin(), features.end());
+    std::vector<std::optional<Hit>> expected(rays.size());
+    std::vector<bool> expected_occluded(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+      expected[i] = brute.intersect(rays[i]);
+      expected_occluded[i] = brute.occluded(rays[i]);
+    }
+    for (const std::string split : {"median", "sah", "sbvh"}) {
+      for (const std::string layout : {"bvh2", "bvh4", "bvh8"}) {
+        for (const std::string& isa : isas()) {
+          WideBvhAccelerator bvh(parse_wide_bvh_options(bvh_params(split, layout, isa)));
+          bvh.build(scene.geometry);
+          size_t failures = 0;
+          for (size_t i = 0; i < rays.size() && failures < 3; ++i) {
+            const std::optional<Hit> got = bvh.intersect(rays[i]);
+            const std::optional<Hit>& want = expected[i];
+            const bool same =
+                got.has_value() == want.has_value() &&
+                (!got || (same_bits(got->t, want->t) && same_bits(got->u, want->u) &&
+                          same_bits(got->v, want->v) && got->geom_id == want->geom_id &&
+                          got->prim_id == want->prim_id));
+            const bool occluded_same = bvh.occluded(rays[i]) == expected_occluded[i];
+            if (!same || !occluded_same) {
+              ++failures;
+              ADD_FAILURE() << scene.name << " " << split << " " << layout << " " << isa << " ray "
+                            << i << " " << format_ray(rays[i]) << ": bvh " << format_hit(got)
+                            << " brute " << format_hit(want)
+                            << (occluded_same ? "" : " (occluded differs)");
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(AccelWideBvh, BatchedIntersectEqualsSingleRays) {
+  const std::vector<NamedScene> scenes = make_scenes();
+  const SceneGeometry& g = scenes[1].geometry;
+  WideBvhAccelerator bvh(parse_wide_bvh_options(ParamSet()));
+  bvh.build(g);
+  const std::vector<Ray> rays = random_rays(g.bounds(), 500, 5);
+  std::vector<std::optional<Hit>> hits(rays.size());
+  bvh.intersect(rays, hits);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const std::optional<Hit> single = bvh.intersect(rays[i]);
+    ASSERT_EQ(single.has_value(), hits[i].has_value()) << i;
+    if (single) {
+      EXPECT_TRUE(same_bits(single->t, hits[i]->t)) << i;
+    }
+  }
+}
+
+TEST(AccelWideBvh, InvalidRaysAndEmptySceneMiss) {
+  SceneGeometry empty;
+  WideBvhAccelerator bvh(parse_wide_bvh_options(ParamSet()));
+  bvh.build(empty);
+  EXPECT_FALSE(bvh.intersect(Ray{}).has_value());
+  EXPECT_FALSE(bvh.occluded(Ray{}));
+
+  const std::vector<NamedScene> scenes = make_scenes();
+  WideBvhAccelerator full(parse_wide_bvh_options(ParamSet()));
+  full.build(scenes[0].geometry);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = kInfinity;
+  const Vec3 o(0.0f, 0.0f, -5.0f);
+  const std::vector<Ray> bad = {
+      {o, 0.0f, Vec3(nan, 0, 1), inf},       {o, 0.0f, Vec3(inf, 0, 1), inf},
+      {Vec3(nan), 0.0f, Vec3(0, 0, 1), inf}, {o, nan, Vec3(0, 0, 1), inf},
+      {o, 0.0f, Vec3(0, 0, 1), nan},         {o, 0.0f, Vec3(0.0f), inf},
+      {o, 3.0f, Vec3(0, 0, 1), 2.0f}};
+  for (const Ray& r : bad) {
+    EXPECT_FALSE(full.intersect(r).has_value()) << format_ray(r);
+    EXPECT_FALSE(full.occluded(r)) << format_ray(r);
+  }
+  // Sanity: the same origin and a valid direction hits the sphere at t = 4.
+  const std::optional<Hit> h = full.intersect({o, 0.0f, Vec3(0.001f, 0.002f, 1.0f), inf});
+  ASSERT_TRUE(h.has_value());
+  EXPECT_NEAR(h->t, 4.0f, 0.01f);
+}
+
+// --- builder invariants -------------------------------------------------------------------
+
+void check_binary_tree(const BinaryBvh& bvh, const SceneGeometry& g, bool allow_duplicates) {
+  ASSERT_GT(bvh.node_count, 0u);
+  std::multiset<std::pair<uint32_t, uint32_t>> seen;
+  std::vector<std::pair<uint32_t, int>> stack{{0, 0}};
+  while (!stack.empty()) {
+    const auto [index, depth] = stack.back();
+    stack.pop_back();
+    ASSERT_LT(depth, kMaxBvhDepth);
+    const BinaryNode& n = bvh.nodes[index];
+    const Bounds3 b = n.bounds();
+    if (n.is_leaf()) {
+      ASSERT_LE(n.first + n.count, bvh.refs.size());
+      const bool spheres = bvh.refs[n.first].geom_id == g.sphere_geom_id();
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+        const PrimRef& r = bvh.refs[i];
+        EXPECT_EQ(r.geom_id == g.sphere_geom_id(), spheres) << "leaf mixes spheres and triangles";
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_LE(b.lower[a], r.lower[a]);
+          EXPECT_GE(b.upper[a], r.upper[a]);
+        }
+        seen.insert({r.geom_id, r.prim_id});
+      }
+      continue;
+    }
+    ASSERT_LT(n.first + 1, bvh.node_count);
+    for (uint32_t c = n.first; c <= n.first + 1; ++c) {
+      const Bounds3 cb = bvh.nodes[c].bounds();
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_LE(b.lower[a], cb.lower[a]);
+        EXPECT_GE(b.upper[a], cb.upper[a]);
+      }
+      stack.push_back({c, depth + 1});
+    }
+  }
+  // Every primitive is referenced; object splits reference each exactly once.
+  std::set<std::pair<uint32_t, uint32_t>> distinct(seen.begin(), seen.end());
+  EXPECT_EQ(distinct.size(), g.primitive_count());
+  if (!allow_duplicates) {
+    EXPECT_EQ(seen.size(), g.primitive_count());
+  }
+}
+
+TEST(AccelWideBvh, BuildersProduceValidTrees) {
+  for (const NamedScene& scene : make_scenes()) {
+    for (const SplitMethod split : {SplitMethod::kMedian, SplitMethod::kSah}) {
+      BvhBuildSettings s;
+      s.split = split;
+      const BinaryBvh bvh = build_object_split_bvh(make_prim_refs(scene.geometry),
+                                                   scene.geometry.sphere_geom_id(), s);
+      SCOPED_TRACE(scene.name + " " + split_name(split));
+      check_binary_tree(bvh, scene.geometry, false);
+    }
+    BvhBuildSettings s;
+    s.split = SplitMethod::kSpatial;
+    const BinaryBvh bvh =
+        build_spatial_split_bvh(scene.geometry, make_prim_refs(scene.geometry), s);
+    SCOPED_TRACE(scene.name + " sbvh");
+    check_binary_tree(bvh, scene.geometry, true);
+    EXPECT_LE(
+        bvh.refs.size(),
+        static_cast<size_t>((1.0f + s.spatial_budget) * scene.geometry.primitive_count()) + 1);
+  }
+}
+
+TEST(AccelWideBvh, SpatialSplitsLowerTheSahCostOfSlivers) {
+  SceneGeometry g;
+  g.meshes.push_back(slivers(4000, 3));
+  g.finalize();
+  ParamSet sah = bvh_params("sah", "bvh8", "generic");
+  ParamSet sbvh = bvh_params("sbvh", "bvh8", "generic");
+  WideBvhAccelerator a(parse_wide_bvh_options(sah)), b(parse_wide_bvh_options(sbvh));
+  a.build(g);
+  b.build(g);
+  EXPECT_LT(b.stats().sah_cost, a.stats().sah_cost);
+}
+
+TEST(AccelWideBvh, WideNodesAreFullerThanBinaryOnes) {
+  const std::vector<NamedScene> scenes = make_scenes();
+  const SceneGeometry& g = scenes[0].geometry;
+  BvhBuildSettings s;
+  const BinaryBvh binary = build_object_split_bvh(make_prim_refs(g), g.sphere_geom_id(), s);
+  const WideBvh<8> wide = collapse_to_wide<8>(binary, g);
+  const WideBvh<4> wide4 = collapse_to_wide<4>(binary, g);
+  EXPECT_LT(wide.stats.nodes, wide4.stats.nodes);
+  EXPECT_LT(wide4.stats.nodes, binary.node_count / 2);
+  EXPECT_EQ(wide.stats.leaves, wide4.stats.leaves);
+  EXPECT_GT(wide.stats.bytes, 0u);
+  EXPECT_GT(wide.stats.sah_cost, 0.0);
+}
+
+// --- parameters -----------------------------------------------------------------------------
+
+TEST(AccelWideBvh, RejectsBadParameters) {
+  auto kind_of = [](const ParamSet& p) {
+    try {
+      parse_wide_bvh_options(p);
+    } catch (const Error& e) {
+      return e.kind();
+    }
+    return ErrorKind::kInternal;
+  };
+  ParamSet a;
+  a.set("bvh.split", "octree");
+  EXPECT_EQ(kind_of(a), ErrorKind::kUsage);
+  ParamSet b;
+  b.set("bvh.layout", "bvh16");
+  EXPECT_EQ(kind_of(b), ErrorKind::kUsage);
+  ParamSet c;
+  c.set("bvh.bins", "1");
+  EXPECT_EQ(kind_of(c), ErrorKind::kUsage);
+  ParamSet d;
+  d.set("bvh.max_leaf_size", "65");
+  EXPECT_EQ(kind_of(d), ErrorKind::kUsage);
+  ParamSet e;
+  e.set("bvh.isa", "neon");
+  EXPECT_EQ(kind_of(e), ErrorKind::kUsage);
+  const WideBvhOptions o = parse_wide_bvh_options(bvh_params("sbvh", "bvh4", "generic"));
+  EXPECT_EQ(o.build.split, SplitMethod::kSpatial);
+  EXPECT_EQ(o.width, 4);
+}
+
+// --- the bench and validate commands -------------------------------------------------------
+
+TEST(AccelWideBvh, BenchWritesARowPerBackendThreadAndRaySet) {
+  const std::filesystem::path dir = test::make_temp_dir("bench");
+  const std::filesystem::path json = dir / "bench.json";
+  const test::ProgramResult r = test::run_prism({"bench", "gen:sphere:2k", "--json", json.string(),
+                                                 "--resolution", "24", "--threads", "1,2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(json);
+  const nlohmann::json rows = nlohmann::json::parse(in);
+  // embree + 3 splits x 3 layouts, each at 2 thread counts on 5 ray sets.
+  ASSERT_EQ(rows.size(), 10u * 2u * 5u);
+  std::set<std::string> configs;
+  for (const auto& row : rows) {
+    configs.insert(row["accel"].get<std::string>() + row["split"].get<std::string>() +
+                   row["layout"].get<std::string>());
+    EXPECT_GT(row["mrays_per_s"].get<double>(), 0.0);
+    EXPECT_GE(row["passes"].get<int>(), 5);
+    EXPECT_LE(row["mrays_min"].get<double>(), row["mrays_per_s"].get<double>());
+    EXPECT_GE(row["mrays_max"].get<double>(), row["mrays_per_s"].get<double>());
+    EXPECT_GT(row["bytes_per_triangle"].get<double>(), 0.0);
+    // Same rays, exact backends: every hit count equals Embree's on this closed mesh.
+    EXPECT_TRUE(row["valid"].get<bool>()) << row.dump();
+  }
+  EXPECT_EQ(configs.size(), 10u);
+  EXPECT_NE(r.out.find("sphere_2k"), std::string::npos) << r.out;  // the summary table
+}
+
+TEST(AccelWideBvh, BenchRejectsBadOptions) {
+  EXPECT_EQ(test::run_prism({"bench", "gen:sphere:1k"}).exit_code, 2);  // no --json
+  const std::string json = (test::make_temp_dir("bench_bad") / "b.json").string();
+  EXPECT_EQ(test::run_prism({"bench", "gen:sphere:1k", "--json", json, "--passes", "3"}).exit_code,
+            2);
+  EXPECT_EQ(
+      test::run_prism({"bench", "gen:sphere:1k", "--json", json, "--backend", "bvh:x:y"}).exit_code,
+      2);
+  EXPECT_EQ(test::run_prism({"bench", "gen:cube:1k", "--json", json}).exit_code, 2);
+}
+
+TEST(AccelWideBvh, ValidatePassesWritesItsFilesAndReplays) {
+  const std::filesystem::path dir = test::make_temp_dir("validate");
+  const std::string failures = (dir / "failures.txt").string();
+  const std::string heatmap = (dir / "heat.png").string();
+  const test::ProgramResult r =
+      test::run_prism({"validate", "gen:grid:200", "--rays", "900", "--failures", failures,
+                       "--heatmap", heatmap, "--set", "embree.refine=false"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("hard=0"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(heatmap));
+  ASSERT_TRUE(std::filesystem::exists(failures));
+  const test::ProgramResult replay = test::run_prism({"validate", "--replay", failures});
+  EXPECT_EQ(replay.exit_code, 0) << replay.out << replay.err;
+  // bvh against brute force follows the exact rule: not a single ray may differ.
+  const test::ProgramResult exact =
+      test::run_prism({"validate", "gen:soup:500", "--rays", "400", "--against", "brute",
+                       "--failures", failures, "--heatmap", heatmap});
+  ASSERT_EQ(exact.exit_code, 0) << exact.out << exact.err;
+  EXPECT_NE(exact.out.find("exact"), std::string::npos) << exact.out;
+  EXPECT_EQ(exact.out.find("tie=1"), std::string::npos) << exact.out;
+}
+
+}  // namespace
+}  // namespace prism
