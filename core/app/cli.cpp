@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "core/app/bench_command.h"
 #include "core/app/commands.h"
 #include "core/app/provenance.h"
+#include "core/app/validate_command.h"
 #include "core/error.h"
 #include "core/samplers.h"
 #include "integrators/integrator.h"
@@ -21,8 +23,8 @@
 namespace prism {
 namespace {
 
-constexpr std::array<const char*, 5> kCommands = {"render", "info", "list", "colorspaces",
-                                                  "convert"};
+constexpr std::array<const char*, 7> kCommands = {"render",  "info",  "list",    "colorspaces",
+                                                  "convert", "bench", "validate"};
 
 /// `prism render --help`'s footer; the defaults come from the constants the code uses.
 std::string render_footer() {
@@ -134,6 +136,44 @@ void add_convert_options(CLI::App& convert, ConvertOptions& o) {
   convert.add_option("--exposure", o.color.exposure, "exposure in stops, before the view");
 }
 
+void add_bench_options(CLI::App& bench, BenchOptions& o) {
+  bench.add_option("scenes", o.scenes,
+                   "scene files, or generated meshes gen:KIND:COUNT (e.g. gen:soup:100k); "
+                   "default: the standard suite");
+  bench.add_option("--json", o.json, "write the results here (JSON array of rows)")->required();
+  bench.add_flag("--quick", o.quick, "reduced suite: 10k and 100k meshes, 256x256 primary rays");
+  bench.add_option("--threads", o.threads, "thread counts to time")
+      ->delimiter(',')
+      ->capture_default_str();
+  bench.add_option("--passes", o.passes, "timed passes after one warm-up (>= 5)")
+      ->capture_default_str();
+  bench.add_option("--resolution", o.resolution, "primary rays per image side (0: 512, quick 256)");
+  bench
+      .add_option("--backend", o.backends,
+                  "embree, bvh or bvh:SPLIT:LAYOUT (repeatable; default: all)")
+      ->allow_extra_args(false);
+  bench.add_option("--set", o.set, "component parameter key=value")->allow_extra_args(false);
+  bench
+      .add_option("--max-pass-seconds", o.max_pass_seconds,
+                  "bench slow scenes on every k-th ray so one Embree pass takes at most this")
+      ->capture_default_str();
+}
+
+void add_validate_options(CLI::App& validate, ValidateOptions& o) {
+  validate.add_option("scene", o.scene,
+                      "scene file or gen:KIND:COUNT (default with --replay: the file's)");
+  validate.add_option("--rays", o.rays, "rays per set (P, S, D1, D2, R, F)")->capture_default_str();
+  validate.add_option("--accel", o.accel, "backend under test")->capture_default_str();
+  validate.add_option("--against", o.against, "backend to compare with")->capture_default_str();
+  validate.add_option("--set", o.set, "component parameter key=value")->allow_extra_args(false);
+  validate.add_option("--replay", o.replay, "re-run the rays of a failures file");
+  validate.add_option("--failures", o.failures, "replay file of the rays that do not match")
+      ->capture_default_str();
+  validate.add_option("--heatmap", o.heatmap, "PNG of where they fall on the image")
+      ->capture_default_str();
+  validate.add_option("-t,--threads", o.threads, "worker threads; 0 = all (default)");
+}
+
 /// One line, whatever CLI11 put in its message.
 void print_usage_error(const std::string& message, const std::string& help_hint) {
   std::string line = message;
@@ -172,6 +212,16 @@ int run_cli(int argc, const char* const* argv) {
       "convert", "a PNG/JPEG/TIFF of an existing EXR through an OCIO display and view");
   add_convert_options(*convert, convert_options);
 
+  BenchOptions bench_options;
+  CLI::App* bench = app.add_subcommand(
+      "bench", "time every backend on the same rays (build, memory, Mrays/s per ray set)");
+  add_bench_options(*bench, bench_options);
+
+  ValidateOptions validate_options;
+  CLI::App* validate = app.add_subcommand(
+      "validate", "compare two backends ray by ray, judged by a double-precision oracle");
+  add_validate_options(*validate, validate_options);
+
   std::vector<std::string> args = arguments_with_default_command(argc, argv);
   if (args.empty()) {
     std::fputs(app.help().c_str(), stdout);
@@ -198,6 +248,8 @@ int run_cli(int argc, const char* const* argv) {
   if (list->parsed()) return run_list_command();
   if (colorspaces->parsed()) return run_colorspaces_command(ocio_config);
   if (convert->parsed()) return run_convert_command(convert_options);
+  if (bench->parsed()) return run_bench_command(bench_options);
+  if (validate->parsed()) return run_validate_command(validate_options);
   std::fputs(app.help().c_str(), stdout);
   return kExitSuccess;
 }

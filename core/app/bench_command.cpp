@@ -1,0 +1,282 @@
+// `prism bench`: every backend on the same stored rays, scene by scene.
+
+#include "core/app/bench_command.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <tuple>
+
+#include "accel/bench/bench_runner.h"
+#include "core/app/render_options.h"
+#include "core/error.h"
+#include "scenes/mesh_generator.h"
+#include "scenes/scene_loader.h"
+
+namespace prism {
+namespace {
+
+/// "10k" -> 10000, "1M" -> 1000000, "2500" -> 2500; throws Error(kUsage).
+size_t parse_count(const std::string& text, const std::string& spec) {
+  size_t scale = 1;
+  std::string digits = text;
+  if (!digits.empty() && (digits.back() == 'k' || digits.back() == 'K')) {
+    scale = 1000;
+    digits.pop_back();
+  } else if (!digits.empty() && digits.back() == 'M') {
+    scale = 1000000;
+    digits.pop_back();
+  }
+  if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+      digits.size() > 9) {
+    throw Error(ErrorKind::kUsage, "'" + spec + "': triangle count must be like 5000, 10k or 1M");
+  }
+  return std::stoul(digits) * scale;
+}
+
+std::string count_label(size_t n) {
+  if (n % 1000000 == 0) return std::to_string(n / 1000000) + "M";
+  if (n % 1000 == 0) return std::to_string(n / 1000) + "k";
+  return std::to_string(n);
+}
+
+/// Twelve triangles of an axis-aligned box: the room around a generated mesh.
+TriangleMesh room(const Bounds3& b) {
+  TriangleMesh m;
+  m.name = "room";
+  for (int i = 0; i < 8; ++i) {
+    m.positions.emplace_back(i & 1 ? b.upper.x : b.lower.x, i & 2 ? b.upper.y : b.lower.y,
+                             i & 4 ? b.upper.z : b.lower.z);
+  }
+  const uint32_t quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                                {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+  for (const auto& q : quads) {
+    m.triangles.push_back({q[0], q[1], q[2]});
+    m.triangles.push_back({q[0], q[2], q[3]});
+  }
+  m.material_id = 0;
+  return m;
+}
+
+Scene generated_scene(GeneratedMeshKind kind, size_t count) {
+  Scene scene;
+  scene.source = "generated " + to_string(kind) + " " + std::to_string(count);
+  TriangleMesh mesh = generate_mesh(kind, count, /*seed=*/1, /*material_id=*/0);
+  const Bounds3 b = mesh.bounds();
+  const Vec3 c = b.center();
+  const float r = 0.5f * glm::length(b.diagonal());
+  scene.geometry.meshes.push_back(std::move(mesh));
+  scene.geometry.meshes.push_back(room({c - Vec3(3.0f * r), c + Vec3(3.0f * r)}));
+  scene.geometry.finalize();
+  scene.materials.push_back(Material{});
+  scene.camera.position = c + r * Vec3(0.45f, 0.6f, 1.9f);
+  scene.camera.target = c;
+  scene.camera.hfov_deg = 55.0f;
+  scene.camera.fit_to_aspect(1.0f);
+  Light light;
+  light.name = "key";
+  light.position = c + r * Vec3(1.6f, 2.4f, 1.2f);
+  scene.lights.push_back(light);
+  scene.validate();
+  return scene;
+}
+
+std::vector<BenchBackend> selected_backends(const BenchOptions& options, const ParamSet& extra) {
+  std::vector<BenchBackend> all = standard_bench_backends();
+  std::vector<BenchBackend> out;
+  for (BenchBackend& b : all) {
+    bool wanted = b.accel == "embree" || options.backends.empty();
+    for (const std::string& want : options.backends) {
+      if (want == b.accel || want == b.accel + ":" + b.split + ":" + b.layout) wanted = true;
+    }
+    if (!wanted) continue;
+    // Embree races as Embree: its own t, u, v (no refinement by prism's triangle test).
+    if (b.accel == "embree") b.params.set("embree.refine", "false");
+    for (const std::string& key : extra.keys()) {
+      if (key.rfind(b.accel + ".", 0) == 0) b.params.set(key, extra.get_string(key, ""));
+    }
+    out.push_back(std::move(b));
+  }
+  for (const std::string& want : options.backends) {
+    const bool known = std::any_of(out.begin(), out.end(), [&](const BenchBackend& b) {
+      return want == b.accel || want == b.accel + ":" + b.split + ":" + b.layout;
+    });
+    if (!known) {
+      throw Error(ErrorKind::kUsage, "--backend '" + want +
+                                         "' is not one of: embree, bvh, bvh:SPLIT:LAYOUT "
+                                         "(SPLIT median|sah|sbvh, LAYOUT bvh2|bvh4|bvh8)");
+    }
+  }
+  return out;
+}
+
+/// One in every returned stride rays keeps a pass of Embree under max_seconds (one thread).
+size_t choose_stride(const Accelerator& tracer, const std::vector<BenchRaySet>& sets,
+                     double max_seconds) {
+  double worst = 0.0;
+  for (const BenchRaySet& s : sets) {
+    const size_t n = std::min<size_t>(s.rays.size(), 2048);
+    if (n == 0) continue;
+    const auto start = std::chrono::steady_clock::now();
+    size_t hits = 0;
+    for (size_t i = 0; i < n; ++i) {
+      hits += s.occlusion ? tracer.occluded(s.rays[i]) : tracer.intersect(s.rays[i]).has_value();
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    worst = std::max(worst, seconds * static_cast<double>(s.rays.size()) / static_cast<double>(n));
+    (void)hits;
+  }
+  return std::max<size_t>(1, static_cast<size_t>(std::ceil(worst / max_seconds)));
+}
+
+void write_json(const std::filesystem::path& path, const std::vector<BenchRow>& rows) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << bench_rows_to_json(rows).dump(1) << "\n";
+    if (!out) throw Error(ErrorKind::kOutput, "cannot write", {path.string(), 0, {}});
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw Error(ErrorKind::kOutput, "cannot write: " + ec.message(), {path.string(), 0, {}});
+}
+
+bool is_default_bvh(const BenchRow& r) {
+  return r.accel == "bvh" && r.split == "sah" && r.layout == "bvh8";
+}
+
+/// bvh (default split and layout) / embree per scene, ray set and thread count, and the
+/// geometric mean over scenes of at least 10k triangles.
+void print_summary(const std::vector<BenchRow>& rows, const std::vector<int>& threads) {
+  std::map<std::tuple<std::string, int, std::string>, double> embree;
+  for (const BenchRow& r : rows) {
+    if (r.accel == "embree") embree[{r.scene, r.threads, r.ray_set}] = r.mrays_per_s;
+  }
+  std::map<int, std::pair<double, int>> log_sum;  // threads -> (sum of log ratios, count)
+  fmt::print("{:<22} {:>3} {:>9} {:>9} {:>9} {:>9} {:>9}   (bvh sah/bvh8 / embree, Mrays/s)\n",
+             "scene", "thr", "P", "S", "D1", "D2", "R");
+  std::string last;
+  for (const BenchRow& r : rows) {
+    if (!is_default_bvh(r) || r.ray_set != "P") continue;
+    for (int t : threads) {
+      if (t != r.threads) continue;
+      std::string line = fmt::format("{:<22} {:>3}", r.scene, t);
+      for (const char* set : {"P", "S", "D1", "D2", "R"}) {
+        const auto bvh = std::find_if(rows.begin(), rows.end(), [&](const BenchRow& x) {
+          return is_default_bvh(x) && x.scene == r.scene && x.threads == t && x.ray_set == set;
+        });
+        const auto e = embree.find({r.scene, t, set});
+        if (bvh == rows.end() || e == embree.end() || e->second <= 0.0) {
+          line += fmt::format(" {:>9}", "-");
+          continue;
+        }
+        const double ratio = bvh->mrays_per_s / e->second;
+        line += fmt::format(" {:>8.2f}{}", ratio, bvh->valid ? " " : "!");
+        if (r.triangles >= 10000) {
+          log_sum[t].first += std::log(ratio);
+          ++log_sum[t].second;
+        }
+      }
+      fmt::print("{}\n", line);
+    }
+  }
+  for (const auto& [t, sum] : log_sum) {
+    fmt::print("geometric mean bvh/embree, scenes >= 10k triangles, {} thread{}: {:.3f}\n", t,
+               t == 1 ? "" : "s", std::exp(sum.first / sum.second));
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> standard_bench_scenes(bool quick) {
+  std::vector<std::string> out;
+  const std::vector<std::string> sizes = quick
+                                             ? std::vector<std::string>{"10k", "100k"}
+                                             : std::vector<std::string>{"10k", "100k", "1M", "10M"};
+  for (const std::string& size : sizes) {
+    for (const char* kind : {"sphere", "noisy_sphere", "soup", "slivers"}) {
+      out.push_back(std::string("gen:") + kind + ":" + size);
+    }
+  }
+  std::vector<std::string> bundled;
+  for (const auto& entry : std::filesystem::directory_iterator(bundled_scene_dir())) {
+    if (entry.path().extension() == ".json") bundled.push_back(entry.path().string());
+  }
+  std::sort(bundled.begin(), bundled.end());
+  out.insert(out.end(), bundled.begin(), bundled.end());
+  return out;
+}
+
+Scene load_bench_scene(const std::string& spec, std::string& name) {
+  if (spec.rfind("gen:", 0) == 0) {
+    const size_t colon = spec.find(':', 4);
+    if (colon == std::string::npos) {
+      throw Error(ErrorKind::kUsage, "'" + spec + "': generated scenes are gen:KIND:COUNT");
+    }
+    const GeneratedMeshKind kind = parse_generated_mesh_kind(spec.substr(4, colon - 4));
+    const size_t count = parse_count(spec.substr(colon + 1), spec);
+    name = to_string(kind) + "_" + count_label(count);
+    return generated_scene(kind, count);
+  }
+  name = std::filesystem::path(spec).stem().string();
+  return load_scene(spec);
+}
+
+int run_bench_command(const BenchOptions& options) {
+  if (options.json.empty()) throw Error(ErrorKind::kUsage, "--json FILE is required");
+  if (options.passes < 5) throw Error(ErrorKind::kUsage, "--passes must be at least 5");
+  for (int t : options.threads) {
+    if (t < 1 || t > 256) throw Error(ErrorKind::kUsage, "--threads values must be in 1..256");
+  }
+  const ParamSet extra = parse_param_assignments(options.set);
+  const std::vector<BenchBackend> backends = selected_backends(options, extra);
+  const std::vector<std::string> specs =
+      options.scenes.empty() ? standard_bench_scenes(options.quick) : options.scenes;
+  const std::filesystem::path json_path(options.json);
+  write_json(json_path, {});  // fail now, not after an hour, if the file cannot be written
+
+  BenchRayOptions ray_options;
+  ray_options.width = ray_options.height =
+      options.resolution > 0 ? options.resolution : (options.quick ? 256 : 512);
+  BenchSettings settings;
+  settings.threads = options.threads;
+  settings.passes = options.passes;
+
+  std::vector<BenchRow> rows;
+  for (const std::string& spec : specs) {
+    std::string name;
+    const Scene scene = load_bench_scene(spec, name);
+    std::vector<BenchRaySet> sets;
+    size_t stride = 1;
+    {
+      ParamSet tracer_params;
+      tracer_params.set("embree.refine", "false");
+      const auto tracer = accelerator_registry().create("embree", tracer_params);
+      tracer->build(scene.geometry);
+      sets = make_bench_ray_sets(scene, *tracer, ray_options);
+      stride = choose_stride(*tracer, sets, options.max_pass_seconds);
+    }
+    thin_ray_sets(sets, stride);
+    std::fprintf(stderr, "bench: %s: %zu triangles%s\n", name.c_str(),
+                 scene.geometry.triangle_count(),
+                 stride > 1 ? fmt::format(", one ray in {} (slow scene)", stride).c_str() : "");
+    settings.build_repeats = scene.geometry.triangle_count() < 1000000 ? 3 : 1;
+    const std::vector<BenchRow> scene_rows = bench_scene(
+        name, scene.geometry, backends, sets, settings,
+        [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); });
+    rows.insert(rows.end(), scene_rows.begin(), scene_rows.end());
+    write_json(json_path, rows);
+  }
+  print_summary(rows, options.threads);
+  fmt::print("wrote {} rows to {}\n", rows.size(), json_path.string());
+  return kExitSuccess;
+}
+
+}  // namespace prism
