@@ -55,7 +55,9 @@ void PixelIntegrator::render(const RenderContext& context, Film& film) const {
   parallel_for_tiles(film.width(), film.height(), kTileSize, [&](const Tile& tile) {
     // One sampler per tile: cheap to clone, and its values depend only on (pixel, index).
     const std::unique_ptr<Sampler> sampler = context.sampler_prototype.clone();
-    sampler->set_sample_count(spp);
+    // Adaptive sampling may stop after any batch: the sampler stratifies each batch of samples
+    // on its own, so that every prefix the stopping rule can choose is well distributed.
+    sampler->set_sample_count(batch > 0 ? std::min(batch, spp) : spp);
     for (int y = tile.begin.y; y < tile.end.y; ++y) {
       for (int x = tile.begin.x; x < tile.end.x; ++x) {
         const glm::ivec2 pixel{x, y};
