@@ -105,7 +105,7 @@ TEST_F(AppBadInput, UnknownIntegratorListsTheAvailableOnes) {
 TEST_F(AppBadInput, UnknownSetKey) {
   const std::string scene = tiny_scene();
   // A typo in a parameter of the accelerator in use, and a key that names no component.
-  for (const std::string& set : {"bvh.no_such_parameter=4", "bvhh.max_leaf_size=4", "spp=4"}) {
+  for (const std::string set : {"bvh.no_such_parameter=4", "bvhh.max_leaf_size=4", "spp=4"}) {
     SCOPED_TRACE(set);
     const auto r = render({scene, "--set", set});
     expect_one_line_error(r, 2, {set.substr(0, set.find('='))});
