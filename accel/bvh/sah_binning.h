@@ -90,9 +90,14 @@ struct BinMapping {
   }
   /// Bin of `r` on all three axes (index 3 is garbage).
   void bin3(const PrimRef& r, int out[4]) const {
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), bin3(r));
+  }
+  /// bin3() in a register. The clamp to [0, bins - 1] happens before the truncation, in float:
+  /// the same bins as truncating and then clamping the integer, without leaving SSE2.
+  __m128i bin3(const PrimRef& r) const {
     const __m128 f = _mm_mul_ps(_mm_sub_ps(center2(r), offset), scale);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(f));
-    for (int a = 0; a < 3; ++a) out[a] = std::clamp(out[a], 0, bins - 1);
+    const __m128 last = _mm_set1_ps(static_cast<float>(bins - 1));
+    return _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), last));
   }
   /// bin3()'s value on one axis, with the same arithmetic (so partitions match the bins).
   int bin(const PrimRef& r, int axis) const {
@@ -136,16 +141,38 @@ struct ObjectBins {
   Box box(int axis, int bin) const { return {lo[axis][bin], hi[axis][bin]}; }
 
   void add(const PrimRef* refs, size_t n, const BinMapping& map) {
-    for (size_t i = 0; i < n; ++i) {
-      int b[4];
+    // Two references per iteration, their bin indices taken out of the registers up front: the
+    // loads and stores of the two interleave, which hides most of the latency when both land in
+    // the same bin.
+    size_t i = 0;
+    for (; i + 1 < n; i += 2) {
+      const __m128i b0 = map.bin3(refs[i]);
+      const __m128i b1 = map.bin3(refs[i + 1]);
+      const int b0x = _mm_cvtsi128_si32(b0), b1x = _mm_cvtsi128_si32(b1);
+      const int b0y = _mm_cvtsi128_si32(_mm_shuffle_epi32(b0, 0x55));
+      const int b1y = _mm_cvtsi128_si32(_mm_shuffle_epi32(b1, 0x55));
+      const int b0z = _mm_cvtsi128_si32(_mm_shuffle_epi32(b0, 0xAA));
+      const int b1z = _mm_cvtsi128_si32(_mm_shuffle_epi32(b1, 0xAA));
+      const __m128 l0 = _mm_load_ps(refs[i].lower), h0 = _mm_load_ps(refs[i].upper);
+      const __m128 l1 = _mm_load_ps(refs[i + 1].lower), h1 = _mm_load_ps(refs[i + 1].upper);
+      add_one(0, b0x, l0, h0);
+      add_one(1, b0y, l0, h0);
+      add_one(2, b0z, l0, h0);
+      add_one(0, b1x, l1, h1);
+      add_one(1, b1y, l1, h1);
+      add_one(2, b1z, l1, h1);
+    }
+    for (; i < n; ++i) {
+      alignas(16) int b[4];
       map.bin3(refs[i], b);
       const __m128 l = _mm_load_ps(refs[i].lower), h = _mm_load_ps(refs[i].upper);
-      for (int a = 0; a < 3; ++a) {
-        lo[a][b[a]] = _mm_min_ps(lo[a][b[a]], l);
-        hi[a][b[a]] = _mm_max_ps(hi[a][b[a]], h);
-        ++count[a][b[a]];
-      }
+      for (int a = 0; a < 3; ++a) add_one(a, b[a], l, h);
     }
+  }
+  void add_one(int axis, int bin, __m128 l, __m128 h) {
+    lo[axis][bin] = _mm_min_ps(lo[axis][bin], l);
+    hi[axis][bin] = _mm_max_ps(hi[axis][bin], h);
+    ++count[axis][bin];
   }
   void merge(const ObjectBins& o) {
     for (int a = 0; a < 3; ++a) {
