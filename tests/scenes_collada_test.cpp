@@ -49,8 +49,16 @@ int line_of(const std::string& text, const std::string& needle) {
 }
 
 Scene load_text(const std::string& text, const SceneLoadOptions& options = {}) {
-  const auto dir = test::make_temp_dir("collada");
-  const auto path = dir / "scene.dae";
+  // The folder goes away on every way out, a thrown Error included.
+  struct RemoveDir {
+    std::filesystem::path dir;
+    ~RemoveDir() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  };
+  const RemoveDir guard{test::make_temp_dir("collada")};
+  const auto path = guard.dir / "scene.dae";
   test::write_text(path, text);
   return load_scene(path, options);
 }

@@ -1,0 +1,79 @@
+// `prism bench` and `prism validate` end to end: the JSON rows, option errors, the replay file
+// and heatmap, and the exit codes.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "tests/app_test_helpers.h"
+#include "tests/test_support.h"
+
+namespace prism {
+namespace {
+
+TEST(AppBenchValidate, BenchWritesARowPerBackendThreadAndRaySet) {
+  const test::TestDirs dirs("bench");
+  const std::filesystem::path json = dirs.out / "bench.json";
+  const test::ProgramResult r = test::run_prism({"bench", "gen:sphere:2k", "--json", json.string(),
+                                                 "--resolution", "24", "--threads", "1,2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(json);
+  const nlohmann::json rows = nlohmann::json::parse(in);
+  // embree + 3 splits x 3 layouts, each at 2 thread counts on 5 ray sets.
+  ASSERT_EQ(rows.size(), 10u * 2u * 5u);
+  std::set<std::string> configs;
+  for (const auto& row : rows) {
+    configs.insert(row["accel"].get<std::string>() + row["split"].get<std::string>() +
+                   row["layout"].get<std::string>());
+    EXPECT_GT(row["mrays_per_s"].get<double>(), 0.0);
+    EXPECT_GE(row["passes"].get<int>(), 5);
+    EXPECT_LE(row["mrays_min"].get<double>(), row["mrays_per_s"].get<double>());
+    EXPECT_GE(row["mrays_max"].get<double>(), row["mrays_per_s"].get<double>());
+    EXPECT_GT(row["bytes_per_triangle"].get<double>(), 0.0);
+    // Same rays, exact backends: every hit count equals Embree's on this closed mesh.
+    EXPECT_TRUE(row["valid"].get<bool>()) << row.dump();
+  }
+  EXPECT_EQ(configs.size(), 10u);
+  EXPECT_NE(r.out.find("sphere_2k"), std::string::npos) << r.out;  // the summary table
+}
+
+TEST(AppBenchValidate, BenchRejectsBadOptions) {
+  EXPECT_EQ(test::run_prism({"bench", "gen:sphere:1k"}).exit_code, 2);  // no --json
+  const test::TestDirs dirs("bench_bad");
+  const std::string json = (dirs.out / "b.json").string();
+  EXPECT_EQ(test::run_prism({"bench", "gen:sphere:1k", "--json", json, "--passes", "3"}).exit_code,
+            2);
+  EXPECT_EQ(
+      test::run_prism({"bench", "gen:sphere:1k", "--json", json, "--backend", "bvh:x:y"}).exit_code,
+      2);
+  EXPECT_EQ(test::run_prism({"bench", "gen:cube:1k", "--json", json}).exit_code, 2);
+}
+
+TEST(AppBenchValidate, ValidatePassesWritesItsFilesAndReplays) {
+  const test::TestDirs dirs("validate");
+  const std::string failures = (dirs.out / "failures.txt").string();
+  const std::string heatmap = (dirs.out / "heat.png").string();
+  const test::ProgramResult r =
+      test::run_prism({"validate", "gen:grid:200", "--rays", "900", "--failures", failures,
+                       "--heatmap", heatmap, "--set", "embree.refine=false"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("hard=0"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(heatmap));
+  ASSERT_TRUE(std::filesystem::exists(failures));
+  const test::ProgramResult replay = test::run_prism({"validate", "--replay", failures});
+  EXPECT_EQ(replay.exit_code, 0) << replay.out << replay.err;
+  // bvh against brute force follows the exact rule: not a single ray may differ.
+  const test::ProgramResult exact =
+      test::run_prism({"validate", "gen:soup:500", "--rays", "400", "--against", "brute",
+                       "--failures", failures, "--heatmap", heatmap});
+  ASSERT_EQ(exact.exit_code, 0) << exact.out << exact.err;
+  EXPECT_NE(exact.out.find("exact"), std::string::npos) << exact.out;
+  EXPECT_EQ(exact.out.find("tie=1"), std::string::npos) << exact.out;
+}
+
+}  // namespace
+}  // namespace prism
