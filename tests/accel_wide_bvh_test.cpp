@@ -9,6 +9,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "accel/brute/brute_accelerator.h"
@@ -370,21 +371,16 @@ TEST(AccelWideBvh, RejectsBadParameters) {
     }
     return ErrorKind::kInternal;
   };
-  ParamSet a;
-  a.set("bvh.split", "octree");
-  EXPECT_EQ(kind_of(a), ErrorKind::kUsage);
-  ParamSet b;
-  b.set("bvh.layout", "bvh16");
-  EXPECT_EQ(kind_of(b), ErrorKind::kUsage);
-  ParamSet c;
-  c.set("bvh.bins", "1");
-  EXPECT_EQ(kind_of(c), ErrorKind::kUsage);
-  ParamSet d;
-  d.set("bvh.max_leaf_size", "65");
-  EXPECT_EQ(kind_of(d), ErrorKind::kUsage);
-  ParamSet e;
-  e.set("bvh.isa", "neon");
-  EXPECT_EQ(kind_of(e), ErrorKind::kUsage);
+  const std::pair<const char*, const char*> bad_values[] = {{"bvh.split", "octree"},
+                                                            {"bvh.layout", "bvh16"},
+                                                            {"bvh.bins", "1"},
+                                                            {"bvh.max_leaf_size", "65"},
+                                                            {"bvh.isa", "neon"}};
+  for (const auto& [key, value] : bad_values) {
+    ParamSet params;
+    params.set(key, value);
+    EXPECT_EQ(kind_of(params), ErrorKind::kUsage) << key << "=" << value;
+  }
   const WideBvhOptions o = parse_wide_bvh_options(bvh_params("sbvh", "bvh4", "generic"));
   EXPECT_EQ(o.build.split, SplitMethod::kSpatial);
   EXPECT_EQ(o.width, 4);

@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "tests/app_test_helpers.h"
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
+#include "tests/app_test_helpers.h"
 #include "tests/test_support.h"
 
 namespace prism {
@@ -88,9 +88,9 @@ TEST(ColorInstalledConfigs, RenderThroughOcioWithoutCodeChanges) {
     test::TestDirs dirs("installed_ocio");
     const std::string scene = dirs.scene("tiny.dae", test::kTinyCollada);
     const fs::path exr = dirs.out / "tiny.exr";
-    const test::ProgramResult r = test::run_prism(
-        {"render", scene, "--integrator", "direct", "--spp", "4", "--resolution", "32", "24",
-         "--quiet", "--output", exr.string(), "--png"});
+    const test::ProgramResult r =
+        test::run_prism({"render", scene, "--integrator", "direct", "--spp", "4", "--resolution",
+                         "32", "24", "--quiet", "--output", exr.string(), "--png"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_TRUE(fs::exists(exr));
     ASSERT_TRUE(fs::exists(dirs.out / "tiny.png"));
