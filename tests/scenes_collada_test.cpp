@@ -1,7 +1,7 @@
 // Tests of the CS184 COLLADA loader: every shared file against counts taken from the XML
 // independently (pugixml here, not the loader's code), the Cornell floor's normals, the area
-// light / emissive quad duplicate, a synthetic file exercising every feature, and one test per
-// class of bad input.
+// light / emissive quad duplicate and a synthetic file exercising every feature. Bad input:
+// scenes_collada_errors_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,107 +20,16 @@
 #include "core/error.h"
 #include "scenes/collada_loader.h"
 #include "scenes/scene_loader.h"
+#include "tests/collada_test_helpers.h"
 #include "tests/test_support.h"
 
 namespace prism {
 namespace {
 
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Replaces the first `from` in `text` (which must be there, so a test cannot silently test the
-// unmodified document).
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "test document lacks: " << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
-
-// 1-based line of the first occurrence of `needle` in `text`.
-int line_of(const std::string& text, const std::string& needle) {
-  const size_t at = text.find(needle);
-  EXPECT_NE(at, std::string::npos) << needle;
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
-}
-
-Scene load_text(const std::string& text, const SceneLoadOptions& options = {}) {
-  // The folder goes away on every way out, a thrown Error included.
-  struct RemoveDir {
-    std::filesystem::path dir;
-    ~RemoveDir() {
-      std::error_code ec;
-      std::filesystem::remove_all(dir, ec);
-    }
-  };
-  const RemoveDir guard{test::make_temp_dir("collada")};
-  const auto path = guard.dir / "scene.dae";
-  test::write_text(path, text);
-  return load_scene(path, options);
-}
-
-// Loads `text`, expects Error(kInput) whose one-line message contains every `needle`, and
-// returns its location line.
-int expect_input_error(const std::string& text, const std::vector<std::string>& needles) {
-  try {
-    load_text(text);
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::kInput) << e.what();
-    const std::string what = e.what();
-    EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
-    for (const auto& needle : needles) {
-      EXPECT_NE(what.find(needle), std::string::npos) << "'" << needle << "' not in: " << what;
-    }
-    return e.location().line;
-  }
-  ADD_FAILURE() << "no error for the document";
-  return -1;
-}
-
-// One triangle bound to a lambert material; every piece on its own line so tests can edit it.
-constexpr const char* kBase = R"(<?xml version="1.0" encoding="utf-8"?>
-<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
-<asset>
-<up_axis>Z_UP</up_axis>
-</asset>
-<library_effects>
-<effect id="red-effect"><profile_COMMON><technique sid="common"><lambert><diffuse><color>0.8 0.1 0.1 1</color></diffuse></lambert></technique></profile_COMMON></effect>
-</library_effects>
-<library_materials>
-<material id="red" name="red"><instance_effect url="#red-effect"/></material>
-</library_materials>
-<library_geometries>
-<geometry id="tri">
-<mesh>
-<source id="tri-pos">
-<float_array id="tri-pos-array" count="9">0 0 0 1 0 0 0 1 0</float_array>
-<technique_common><accessor source="#tri-pos-array" count="3" stride="3"/></technique_common>
-</source>
-<vertices id="tri-vtx"><input semantic="POSITION" source="#tri-pos"/></vertices>
-<polylist material="mat" count="1">
-<input semantic="VERTEX" source="#tri-vtx" offset="0"/>
-<vcount>3</vcount>
-<p>0 1 2</p>
-</polylist>
-</mesh>
-</geometry>
-<geometry id="ball"><extra><technique profile="CGL"><sphere><radius>0.5</radius></sphere></technique></extra></geometry>
-</library_geometries>
-<library_visual_scenes>
-<visual_scene id="Scene">
-<node id="n">
-<instance_geometry url="#tri"><bind_material><technique_common><instance_material symbol="mat" target="#red"/></technique_common></bind_material></instance_geometry>
-</node>
-<node id="s"><translate>0 0 2</translate><instance_geometry url="#ball"/></node>
-</visual_scene>
-</library_visual_scenes>
-<scene><instance_visual_scene url="#Scene"/></scene>
-</COLLADA>
-)";
+using test::collada::kBase;
+using test::collada::load_text;
+using test::collada::read_file;
+using test::collada::replaced;
 
 TEST(ColladaLoader, BaseDocumentLoads) {
   const Scene scene = load_text(kBase);
@@ -579,192 +488,6 @@ TEST(ColladaLoader, LiteralCameraOption) {
 }
 
 // ---- Bad input: one test per class; each names the element or id and gives its line. ----
-
-TEST(ColladaErrors, MalformedXml) {
-  const std::string text = replaced(kBase, "<p>0 1 2</p>", "<p>0 1 2</q>");
-  const int line = expect_input_error(text, {"malformed XML", "mismatch"});
-  EXPECT_EQ(line, line_of(text, "</q>"));
-  EXPECT_GT(expect_input_error("", {"malformed XML"}), 0);
-  expect_input_error("\x01\x02garbage<<>>", {"malformed XML"});
-  EXPECT_EQ(expect_input_error("<?xml version=\"1.0\"?>\n<scene/>\n", {"<scene>", "COLLADA"}), 2);
-}
-
-TEST(ColladaErrors, MissingOrUnknownUpAxis) {
-  const std::string missing = replaced(kBase, "<up_axis>Z_UP</up_axis>\n", "");
-  EXPECT_EQ(expect_input_error(missing, {"<asset>", "up_axis"}), line_of(missing, "<asset>"));
-  const std::string unknown = replaced(kBase, "Z_UP", "W_UP");
-  EXPECT_EQ(expect_input_error(unknown, {"<up_axis>", "'W_UP'"}), line_of(unknown, "W_UP"));
-  // Windows line endings count lines the same way.
-  std::string crlf;
-  for (char c : unknown) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
-  EXPECT_EQ(expect_input_error(crlf, {"'W_UP'"}), line_of(unknown, "W_UP"));
-}
-
-TEST(ColladaErrors, DanglingReferencesNameTheId) {
-  struct Case {
-    std::string from, to;
-    std::vector<std::string> needles;
-    std::string at;  // text on the line the error must point at
-  };
-  const std::vector<Case> cases = {
-      {"url=\"#tri\"", "url=\"#nope\"", {"'nope'", "<instance_geometry"}, "#nope"},
-      {"target=\"#red\"", "target=\"#ghost\"", {"'ghost'", "<instance_material"}, "#ghost"},
-      {"source=\"#tri-pos\"/>", "source=\"#lost\"/>", {"'lost'", "<input"}, "#lost"},
-      {"source=\"#tri-pos-array\"",
-       "source=\"#no-array\"",
-       {"'no-array'", "<accessor"},
-       "#no-array"},
-      {"url=\"#red-effect\"",
-       "url=\"#no-effect\"",
-       {"'no-effect'", "<instance_effect"},
-       "#no-effect"},
-      {"url=\"#Scene\"", "url=\"#NoScene\"", {"'NoScene'", "<instance_visual_scene"}, "#NoScene"},
-      {"<translate>0 0 2</translate>", "<instance_light url=\"#lamp\"/>", {"'lamp'"}, "#lamp"},
-      {"url=\"#tri\"",
-       "url=\"#red\"",
-       {"'#red' names a <material>, expected <geometry>"},
-       "url=\"#red\""},
-      {"url=\"#tri\"", "url=\"other.dae#tri\"", {"other.dae#tri", "local reference"}, "other.dae"},
-      {"symbol=\"mat\"",
-       "symbol=\"other\"",
-       {"symbol 'mat'", "<polylist material=\"mat\">"},
-       "other"},
-  };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.to);
-    const std::string text = replaced(kBase, c.from, c.to);
-    EXPECT_EQ(expect_input_error(text, c.needles), line_of(text, c.at));
-  }
-}
-
-TEST(ColladaErrors, WrongCounts) {
-  const std::string wrong = replaced(kBase, "count=\"9\"", "count=\"12\"");
-  EXPECT_EQ(
-      expect_input_error(wrong, {"<float_array id=\"tri-pos-array\">", "count=\"12\"", "holds 9"}),
-      line_of(wrong, "count=\"12\""));
-  // An absurd count is compared with the content, never used to allocate.
-  expect_input_error(replaced(kBase, "count=\"9\"", "count=\"999999999999\""), {"999999999999"});
-  const std::string past = replaced(kBase, "count=\"3\" stride=\"3\"", "count=\"4\" stride=\"3\"");
-  EXPECT_EQ(expect_input_error(past, {"<accessor", "reads past the end", "tri-pos-array"}),
-            line_of(past, "count=\"4\""));
-  expect_input_error(
-      replaced(kBase, "count=\"3\" stride=\"3\"", "count=\"18446744073709551615\" stride=\"3\""),
-      {"reads past the end"});
-  expect_input_error(replaced(kBase, "count=\"3\" stride=\"3\"", "count=\"3\" stride=\"0\""),
-                     {"stride 0 is too small"});
-  expect_input_error(replaced(kBase, "count=\"9\"", "count=\"nine\""),
-                     {"count=\"nine\"", "integer"});
-}
-
-TEST(ColladaErrors, NonNumericAndNonFiniteNumbers) {
-  const std::string array = "0 0 0 1 0 0 0 1 0";
-  for (const std::string bad :
-       {"zero", "nan", "NaN", "inf", "-Infinity", "1e999", "0x1p3", "1,5"}) {
-    SCOPED_TRACE(bad);
-    // The bad token sits on the float_array's second line; the error points there.
-    const std::string text = replaced(kBase, array, "0 0 0 1 0 0\n0 " + bad + " 0");
-    EXPECT_EQ(expect_input_error(text, {"'" + bad + "'", "tri-pos-array"}),
-              line_of(text, "tri-pos-array\"") + 1);
-  }
-  const std::string transform =
-      replaced(kBase, "<translate>0 0 2</translate>", "<translate>0 NaN 2</translate>");
-  EXPECT_EQ(expect_input_error(transform, {"'NaN'", "<translate>"}), line_of(transform, "NaN"));
-  expect_input_error(replaced(kBase, "0.8 0.1 0.1 1", "0.8 0.1"), {"<color>", "3 or 4 numbers"});
-  expect_input_error(replaced(kBase, "0.8 0.1 0.1 1", "0.8 -0.1 0.1 1"), {"<color>", ">= 0"});
-}
-
-TEST(ColladaErrors, IndexOutOfRange) {
-  const std::string text = replaced(kBase, "<p>0 1 2</p>", "<p>0 1 7</p>");
-  EXPECT_EQ(expect_input_error(text, {"index 7", "VERTEX", "out of range", "<p>"}),
-            line_of(text, "<p>"));
-  expect_input_error(replaced(kBase, "<p>0 1 2</p>", "<p>0 -1 2</p>"), {"'-1'", "<p>"});
-  expect_input_error(replaced(kBase, "<p>0 1 2</p>", "<p>0 1 4294967296</p>"), {"'4294967296'"});
-}
-
-TEST(ColladaErrors, VcountAndPLengthMismatch) {
-  const std::string text = replaced(kBase, "<vcount>3</vcount>", "<vcount>4</vcount>");
-  EXPECT_EQ(expect_input_error(text, {"<p>", "holds 3 indices", "<vcount> needs 4"}),
-            line_of(text, "<p>"));
-  expect_input_error(replaced(kBase, "<vcount>3</vcount>", "<vcount>4294967295</vcount>"),
-                     {"<vcount> needs 4294967295"});
-  const std::string small = replaced(kBase, "<vcount>3</vcount>", "<vcount>2</vcount>");
-  EXPECT_EQ(expect_input_error(small, {"<vcount>", "at least 3"}), line_of(small, "<vcount>2"));
-  expect_input_error(replaced(kBase, "<polylist material=\"mat\" count=\"1\">",
-                              "<polylist material=\"mat\" count=\"2\">"),
-                     {"count=\"2\"", "1 <vcount> entries"});
-}
-
-TEST(ColladaErrors, MissingVisualScene) {
-  const std::string no_scene =
-      replaced(kBase, "<scene><instance_visual_scene url=\"#Scene\"/></scene>\n", "");
-  EXPECT_EQ(expect_input_error(no_scene, {"<COLLADA>", "visual scene"}),
-            line_of(no_scene, "<COLLADA"));
-  const std::string empty = replaced(kBase, "<instance_visual_scene url=\"#Scene\"/>", "");
-  EXPECT_EQ(expect_input_error(empty, {"<scene>", "instance_visual_scene"}),
-            line_of(empty, "<scene>"));
-}
-
-TEST(ColladaErrors, SphereRadiusMustBePositive) {
-  for (const std::string radius : {"-1", "0", "-0"}) {
-    SCOPED_TRACE(radius);
-    const std::string text =
-        replaced(kBase, "<radius>0.5</radius>", "<radius>" + radius + "</radius>");
-    EXPECT_EQ(expect_input_error(text, {"<radius>", "positive"}), line_of(text, "<radius>"));
-  }
-  // Finite as a double, infinite as the float it is stored in.
-  expect_input_error(replaced(kBase, "<radius>0.5</radius>", "<radius>1e300</radius>"),
-                     {"<radius>", "'1e300'", "too large"});
-}
-
-TEST(ColladaErrors, HostileStructureFailsCleanly) {
-  // Nesting far deeper than any real file.
-  std::string deep;
-  for (int i = 0; i < 300; ++i) deep += "<node>";
-  for (int i = 0; i < 300; ++i) deep += "</node>";
-  expect_input_error(replaced(kBase, "<node id=\"n\">", deep + "<node id=\"n\">"),
-                     {"deeper than 256"});
-  // A node that instantiates itself.
-  expect_input_error(
-      replaced(kBase, "<node id=\"n\">", "<node id=\"n\"><instance_node url=\"#n\"/>"),
-      {"deeper than 256"});
-  // Doubling fan-out: 2^40 instances from 40 small nodes.
-  std::string chain = "<library_nodes>\n";
-  for (int i = 0; i < 40; ++i) {
-    chain += "<node id=\"c" + std::to_string(i) + "\"><instance_node url=\"#c" +
-             std::to_string(i + 1) + "\"/><instance_node url=\"#c" + std::to_string(i + 1) +
-             "\"/></node>\n";
-  }
-  chain += "<node id=\"c40\"/>\n</library_nodes>\n<library_visual_scenes>";
-  std::string fan = replaced(kBase, "<library_visual_scenes>", chain);
-  expect_input_error(
-      replaced(fan, "<node id=\"s\">", "<node><instance_node url=\"#c0\"/></node><node id=\"s\">"),
-      {"more than 1000000 nodes"});
-  // Unsupported primitives and transforms say so instead of silently dropping geometry.
-  const std::string polygons = replaced(kBase, "<polylist material=\"mat\" count=\"1\">",
-                                        "<polygons material=\"mat\" count=\"1\">");
-  expect_input_error(replaced(polygons, "</polylist>", "</polygons>"),
-                     {"<polygons", "not supported"});
-  expect_input_error(replaced(kBase, "<translate>0 0 2</translate>", "<skew>45 0 1 0 1 0 0</skew>"),
-                     {"<skew>", "not supported"});
-}
-
-TEST(ColladaErrors, BadMaterialAndLightValues) {
-  const std::string cgl = "<extra><technique profile=\"CGL\">";
-  const std::string effect = "<effect id=\"red-effect\">";
-  expect_input_error(replaced(kBase, effect, effect + cgl + "<velvet/></technique></extra>"),
-                     {"<velvet>", "unknown CGL material"});
-  expect_input_error(
-      replaced(kBase, effect, effect + cgl + "<glass><ior>-1</ior></glass></technique></extra>"),
-      {"<ior>", "> 0"});
-  const std::string lights =
-      "<library_lights><light id=\"l\"><technique_common><point><color>1 1 1</color>"
-      "<constant_attenuation>0</constant_attenuation></point></technique_common></light></"
-      "library_lights>\n"
-      "<library_geometries>";
-  std::string text = replaced(kBase, "<library_geometries>", lights);
-  text = replaced(text, "<translate>0 0 2</translate>", "<instance_light url=\"#l\"/>");
-  expect_input_error(text, {"<point>", "attenuation are all zero"});
-}
 
 }  // namespace
 }  // namespace prism
