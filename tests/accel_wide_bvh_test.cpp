@@ -21,6 +21,7 @@
 #include "accel/validation/hit_comparison.h"
 #include "accel/validation/ray_sets.h"
 #include "core/error.h"
+#include "scenes/mesh_generator.h"
 #include "tests/test_support.h"
 
 namespace prism {
@@ -28,47 +29,17 @@ namespace {
 
 // --- scenes built in code -------------------------------------------------------------------
 
-TriangleMesh uv_sphere(int rings, int segments, Vec3 center, float radius) {
-  TriangleMesh m;
-  m.name = "uv_sphere";
-  for (int r = 0; r <= rings; ++r) {
-    const float theta = kPi * static_cast<float>(r) / static_cast<float>(rings);
-    for (int s = 0; s < segments; ++s) {
-      const float phi = 2.0f * kPi * static_cast<float>(s) / static_cast<float>(segments);
-      m.positions.push_back(center + radius * Vec3(std::sin(theta) * std::cos(phi),
-                                                   std::sin(theta) * std::sin(phi),
-                                                   std::cos(theta)));
-    }
-  }
-  for (int r = 0; r < rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      const auto i0 = static_cast<uint32_t>(r * segments + s);
-      const auto i1 = static_cast<uint32_t>(r * segments + (s + 1) % segments);
-      const auto i2 = i0 + static_cast<uint32_t>(segments);
-      const auto i3 = i1 + static_cast<uint32_t>(segments);
-      m.triangles.push_back({i0, i2, i1});
-      m.triangles.push_back({i1, i2, i3});
-    }
-  }
+// The project's generated meshes (scenes/mesh_generator.h), moved to `center` and scaled.
+TriangleMesh generated(GeneratedMeshKind kind, size_t triangles, uint64_t seed,
+                       Vec3 center = Vec3(0.0f), float scale = 1.0f) {
+  TriangleMesh m = generate_mesh(kind, triangles, seed);
+  for (Vec3& p : m.positions) p = center + scale * p;
   return m;
 }
 
-TriangleMesh soup(size_t count, uint64_t seed, float size) {
-  std::mt19937 rng(static_cast<uint32_t>(seed));
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  TriangleMesh m;
-  m.name = "soup";
-  for (size_t i = 0; i < count; ++i) {
-    const Vec3 c(u(rng), u(rng), u(rng));
-    for (int k = 0; k < 3; ++k) m.positions.push_back(c + size * Vec3(u(rng), u(rng), u(rng)));
-    const auto b = static_cast<uint32_t>(3 * i);
-    m.triangles.push_back({b, b + 1, b + 2});
-  }
-  return m;
-}
-
-// Long thin triangles crossing the box: what spatial splits are for.
-TriangleMesh slivers(size_t count, uint64_t seed) {
+// Long thin triangles crossing the box diagonally, through its centre: what spatial splits are
+// for. (The generator's slivers run along the axes, where SBVH finds nothing to clip.)
+TriangleMesh diagonal_slivers(size_t count, uint64_t seed) {
   std::mt19937 rng(static_cast<uint32_t>(seed));
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   TriangleMesh m;
@@ -122,17 +93,17 @@ std::vector<NamedScene> make_scenes() {
   std::vector<NamedScene> scenes;
   {
     NamedScene s{"sphere", {}};
-    s.geometry.meshes.push_back(uv_sphere(40, 60, Vec3(0.0f), 1.0f));
+    s.geometry.meshes.push_back(generated(GeneratedMeshKind::kSphere, 4800, 1));
     scenes.push_back(std::move(s));
   }
   {
     NamedScene s{"soup", {}};
-    s.geometry.meshes.push_back(soup(3000, 7, 0.15f));
+    s.geometry.meshes.push_back(generated(GeneratedMeshKind::kSoup, 3000, 7));
     scenes.push_back(std::move(s));
   }
   {
     NamedScene s{"slivers", {}};
-    s.geometry.meshes.push_back(slivers(1500, 11));
+    s.geometry.meshes.push_back(diagonal_slivers(1500, 11));
     scenes.push_back(std::move(s));
   }
   {
@@ -144,10 +115,9 @@ std::vector<NamedScene> make_scenes() {
     // Two meshes, far from the origin, with analytic spheres between them.
     NamedScene s{"mixed_offset", {}};
     const Vec3 offset(1000.0f, -500.0f, 250.0f);
-    s.geometry.meshes.push_back(uv_sphere(12, 16, offset + Vec3(-2, 0, 0), 1.0f));
-    TriangleMesh g = soup(400, 3, 0.3f);
-    for (Vec3& p : g.positions) p = offset + 3.0f * p;
-    s.geometry.meshes.push_back(std::move(g));
+    s.geometry.meshes.push_back(
+        generated(GeneratedMeshKind::kSphere, 384, 2, offset + Vec3(-2, 0, 0)));
+    s.geometry.meshes.push_back(generated(GeneratedMeshKind::kSoup, 400, 3, offset, 3.0f));
     for (int i = 0; i < 37; ++i) {
       s.geometry.spheres.push_back(
           {offset + Vec3(static_cast<float>(i % 6) - 2.5f, static_cast<float>(i / 6) - 3.0f, 0.5f),
@@ -336,7 +306,7 @@ TEST(AccelWideBvh, BuildersProduceValidTrees) {
 
 TEST(AccelWideBvh, SpatialSplitsLowerTheSahCostOfSlivers) {
   SceneGeometry g;
-  g.meshes.push_back(slivers(4000, 3));
+  g.meshes.push_back(diagonal_slivers(4000, 3));
   g.finalize();
   ParamSet sah = bvh_params("sah", "bvh8", "generic");
   ParamSet sbvh = bvh_params("sbvh", "bvh8", "generic");
