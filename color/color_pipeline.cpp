@@ -42,6 +42,7 @@
 
 #include "color/ocio_config.h"
 #include "core/error.h"
+#include "core/strings.h"
 
 namespace prism {
 
@@ -103,11 +104,6 @@ void check_output_space(const OCIO::ConstConfigRcPtr& config, const std::string&
                     "' is not a scene-referred colour space; EXR files hold scene-referred "
                     "colour (use --display/--view for display-referred images)");
   }
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 Rgb apply_one(const OCIO::ConstCPUProcessorRcPtr& processor, const Rgb& color) {
@@ -330,9 +326,9 @@ bool is_color_layer(const std::string& layer) {
   constexpr const char* kColorLayers[] = {
       "",       "albedo",   "diffuse",    "specular", "glossy",         "transmission", "emission",
       "direct", "indirect", "background", "beauty",   "diffuse_albedo", "diffuseColor"};
-  const std::string l = lower(layer);
+  const std::string l = to_lower(layer);
   for (const char* name : kColorLayers) {
-    if (l == lower(name)) return true;
+    if (l == to_lower(name)) return true;
   }
   return false;
 }

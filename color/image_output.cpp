@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/strings.h"
 
 namespace prism {
 namespace fs = std::filesystem;
@@ -19,11 +20,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr float kHalfMax = 65504.0f;
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 fs::path folder_of(const fs::path& path) {
   return path.has_parent_path() ? path.parent_path() : fs::path(".");
@@ -128,7 +124,7 @@ std::string layer_of(const std::string& channel) {
 bool needs_float(const std::string& channel) {
   constexpr const char* kLayers[] = {"z",           "depth", "p",        "position",
                                      "samplecount", "id",    "objectid", "materialid"};
-  const std::string layer = lower(layer_of(channel));
+  const std::string layer = to_lower(layer_of(channel));
   return std::any_of(std::begin(kLayers), std::end(kLayers),
                      [&](const char* l) { return layer == l; });
 }
@@ -152,7 +148,7 @@ void add_pipeline_metadata(OIIO::ImageSpec& spec, const ColorPipeline& pipeline)
 }
 
 std::string display_format(const fs::path& path) {
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = lower_case_extension(path);
   if (ext == ".png") return "png";
   if (ext == ".jpg" || ext == ".jpeg") return "jpeg";
   if (ext == ".tif" || ext == ".tiff") return "tiff";
@@ -281,7 +277,7 @@ void write_display_image(const fs::path& path, const Image& image, const ImageMe
   add_pipeline_metadata(spec, pipeline);
   spec.attribute("prism:colorSpace", pipeline.display_color_space());
   // Tags the file as sRGB (PNG sRGB chunk) only when the display really is sRGB.
-  if (lower(pipeline.display_color_space()).find("srgb") != std::string::npos) {
+  if (to_lower(pipeline.display_color_space()).find("srgb") != std::string::npos) {
     spec.attribute("oiio:ColorSpace", "sRGB");
   }
   if (format == "jpeg") spec.attribute("Compression", "jpeg:95");

@@ -12,15 +12,14 @@
 
 #include "color/color_pipeline.h"
 #include "core/error.h"
+#include "core/strings.h"
 
 namespace prism::color_detail {
 namespace {
 
 // Lower-case hex, as sha1sum prints it, so the header value can be checked against the file.
 std::string sha1_of(const std::string& bytes) {
-  std::string hex = OIIO::SHA1::digest(bytes.data(), bytes.size());
-  for (char& c : hex) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return "sha1:" + hex;
+  return "sha1:" + to_lower(OIIO::SHA1::digest(bytes.data(), bytes.size()));
 }
 
 std::string read_config_file(const std::string& path, const std::string& origin) {
@@ -90,13 +89,7 @@ LoadedConfig load_config(const std::string& ocio_config) {
 }
 
 std::string join_names(const std::vector<std::string>& names) {
-  if (names.empty()) return "(none)";
-  std::string out;
-  for (const auto& n : names) {
-    if (!out.empty()) out += ", ";
-    out += n;
-  }
-  return out;
+  return join(names, ", ", "(none)");
 }
 
 std::vector<std::string> color_space_names(const OCIO::Config& config) {

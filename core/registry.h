@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/param_set.h"
+#include "core/strings.h"
 
 namespace prism {
 
@@ -43,11 +44,14 @@ class Registry {
   }
   const std::vector<Entry>& entries() const { return entries_; }
   const std::string& kind() const { return kind_; }
-  std::string names_joined() const {
-    std::string out;
-    for (const auto& e : entries_) out += (out.empty() ? "" : ", ") + e.name;
+  /// The names in table order.
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& e : entries_) out.push_back(e.name);
     return out;
   }
+  /// The names as "a, b, c", for messages and help text.
+  std::string names_joined() const { return join(names()); }
 
  private:
   std::string kind_;

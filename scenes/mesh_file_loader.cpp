@@ -15,16 +15,10 @@
 #include <assimp/Importer.hpp>
 
 #include "core/error.h"
+#include "core/strings.h"
 
 namespace prism {
 namespace {
-
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 /// Triangles of one Assimp mesh appended to `out`, with per-corner attributes when wanted.
 void append_mesh(const aiMesh& in, bool with_normals, bool with_uvs, TriangleMesh& out) {
@@ -200,7 +194,7 @@ TriangleMesh load_mesh_file(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw Error(ErrorKind::kInput, "mesh path is not a regular file", where);
   }
-  const std::string ext = lower_extension(path);
+  const std::string ext = lower_case_extension(path);
   if (ext != ".obj" && ext != ".ply") {
     throw Error(ErrorKind::kInput,
                 "unsupported mesh file extension '" + ext + "'; supported: .obj, .ply", where);

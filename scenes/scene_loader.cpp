@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "core/error.h"
+#include "core/strings.h"
 #include "scenes/collada_loader.h"
 #include "scenes/json_scene_loader.h"
 
@@ -18,9 +19,7 @@ Scene load_scene(const std::filesystem::path& path, const SceneLoadOptions& opti
   if (std::filesystem::is_directory(path, ec)) {
     throw Error(ErrorKind::kInput, "scene path is a directory, not a file", where);
   }
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_case_extension(path);
   Scene scene;
   if (ext == ".dae") {
     scene = load_collada(path, options);

@@ -14,7 +14,7 @@
 #include "accel/validation/ray_sets.h"
 #include "core/sampler.h"
 #include "scenes/scene_loader.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

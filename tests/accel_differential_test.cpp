@@ -38,7 +38,7 @@
 #include "core/parallel.h"
 #include "scenes/mesh_generator.h"
 #include "scenes/scene_loader.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

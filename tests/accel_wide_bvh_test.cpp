@@ -22,7 +22,7 @@
 #include "accel/validation/ray_sets.h"
 #include "core/error.h"
 #include "scenes/mesh_generator.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <fstream>
 
-#include "tests/app_test_helpers.h"
-#include "tests/test_support.h"
+#include "tests/support/app_test_helpers.h"
+#include "tests/support/test_support.h"
 
 namespace prism::test {
 namespace {

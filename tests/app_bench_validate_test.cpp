@@ -9,8 +9,8 @@
 #include <set>
 #include <string>
 
-#include "tests/app_test_helpers.h"
-#include "tests/test_support.h"
+#include "tests/support/app_test_helpers.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

@@ -6,8 +6,8 @@
 #include <iterator>
 
 #include "color/image_output.h"
-#include "tests/app_test_helpers.h"
-#include "tests/test_support.h"
+#include "tests/support/app_test_helpers.h"
+#include "tests/support/test_support.h"
 
 namespace prism::test {
 namespace {

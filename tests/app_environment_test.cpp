@@ -15,8 +15,8 @@
 #include "color/image_output.h"
 #include "core/app/environment_map.h"
 #include "core/error.h"
-#include "tests/app_test_helpers.h"
-#include "tests/test_support.h"
+#include "tests/support/app_test_helpers.h"
+#include "tests/support/test_support.h"
 
 namespace prism::test {
 namespace {

@@ -6,7 +6,7 @@
 #include "color/image_output.h"
 #include "core/app/sample_rate_image.h"
 #include "scenes/scene_loader.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

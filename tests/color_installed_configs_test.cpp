@@ -19,8 +19,8 @@
 
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
-#include "tests/app_test_helpers.h"
-#include "tests/test_support.h"
+#include "tests/support/app_test_helpers.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "color/color_pipeline.h"
 #include "core/error.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

@@ -14,7 +14,7 @@
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
 #include "core/error.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

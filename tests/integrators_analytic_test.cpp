@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "integrators/sampling/warp.h"
-#include "tests/integrators_test_scenes.h"
+#include "tests/support/integrators_test_scenes.h"
 
 namespace prism {
 namespace {

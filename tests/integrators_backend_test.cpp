@@ -6,13 +6,16 @@
 #include <cmath>
 #include <vector>
 
-#include "integrators/sampling/statistics.h"
 #include "scenes/scene_loader.h"
-#include "tests/integrators_test_scenes.h"
-#include "tests/test_support.h"
+#include "tests/support/integrators_test_scenes.h"
+#include "tests/support/statistics.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {
+
+using test::benjamini_hochberg;
+using test::normal_two_sided_p;
 
 using test::TestRender;
 

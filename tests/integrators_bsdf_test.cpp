@@ -15,11 +15,18 @@
 #include "integrators/bsdf/glass_bsdf.h"
 #include "integrators/bsdf/microfacet_bsdf.h"
 #include "integrators/bsdf/mirror_bsdf.h"
-#include "integrators/sampling/chi_square.h"
 #include "integrators/sampling/warp.h"
+#include "tests/support/chi_square.h"
 
 namespace prism {
 namespace {
+
+using test::ChiSquareResult;
+using test::directional_chi_square;
+using test::DirectionalChiSquareOptions;
+using test::DirectionPdf;
+using test::DirectionSampler;
+using test::sidak_significance;
 
 // Every chi-square test in this file and in integrators_light_test.cpp shares one family-wise
 // significance of 0.01 (Sidak), over at most this many tests.

@@ -11,11 +11,18 @@
 #include "integrators/lights/environment_light.h"
 #include "integrators/lights/light_set.h"
 #include "integrators/lights/point_light.h"
-#include "integrators/sampling/chi_square.h"
 #include "integrators/sampling/warp.h"
+#include "tests/support/chi_square.h"
 
 namespace prism {
 namespace {
+
+using test::ChiSquareResult;
+using test::directional_chi_square;
+using test::DirectionalChiSquareOptions;
+using test::DirectionPdf;
+using test::DirectionSampler;
+using test::sidak_significance;
 
 constexpr size_t kChiSquareTests = 64;  // shared with integrators_bsdf_test.cpp
 const double kSignificance = sidak_significance(0.01, kChiSquareTests);

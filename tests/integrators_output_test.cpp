@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "tests/integrators_test_scenes.h"
+#include "tests/support/integrators_test_scenes.h"
 
 namespace prism {
 namespace {

@@ -7,11 +7,15 @@
 
 #include "core/error.h"
 #include "core/samplers.h"
-#include "integrators/sampling/statistics.h"
-#include "tests/integrators_test_scenes.h"
+#include "tests/support/integrators_test_scenes.h"
+#include "tests/support/statistics.h"
 
 namespace prism {
 namespace {
+
+using test::chi_square_test;
+using test::ChiSquareResult;
+using test::sidak_significance;
 
 TEST(IntegratorsSampler, RegistryListsEverySampler) {
   for (const char* name : {"independent", "jittered", "sobol"}) {

@@ -13,7 +13,7 @@
 
 #include "core/camera.h"
 #include "scenes/scene_loader.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

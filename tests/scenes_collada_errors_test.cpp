@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "tests/collada_test_helpers.h"
+#include "tests/support/collada_test_helpers.h"
 
 namespace prism {
 namespace {

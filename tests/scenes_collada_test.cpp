@@ -20,8 +20,8 @@
 #include "core/error.h"
 #include "scenes/collada_loader.h"
 #include "scenes/scene_loader.h"
-#include "tests/collada_test_helpers.h"
-#include "tests/test_support.h"
+#include "tests/support/collada_test_helpers.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

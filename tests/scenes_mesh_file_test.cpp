@@ -10,7 +10,7 @@
 #include "core/error.h"
 #include "scenes/json_scene_loader.h"
 #include "scenes/mesh_file_loader.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {

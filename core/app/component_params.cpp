@@ -5,18 +5,11 @@
 
 #include "accel/accelerator.h"
 #include "core/error.h"
+#include "core/strings.h"
 #include "integrators/integrator.h"
 
 namespace prism {
-namespace {
-
-std::string join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : "', '") + item;
-  return out;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 void check_component_params(const ParamSet& params, const std::vector<ComponentInUse>& in_use) {
   const auto& accels = accelerator_registry();
@@ -44,7 +37,7 @@ void check_component_params(const ParamSet& params, const std::vector<ComponentI
     if (!unused.empty()) {
       throw Error(ErrorKind::kUsage,
                   std::string(unused.size() == 1 ? "unknown parameter '" : "unknown parameters '") +
-                      join(unused) + "' for " + component.kind + " '" + component.name +
+                      join(unused, "', '") + "' for " + component.kind + " '" + component.name +
                       "' (its parameters: `prism list`)",
                   ErrorLocation{{}, 0, "--set"});
     }

@@ -14,6 +14,7 @@
 #include "color/image_output.h"
 #include "core/app/commands.h"
 #include "core/error.h"
+#include "core/strings.h"
 
 namespace prism {
 namespace {
@@ -44,11 +45,8 @@ Image beauty_of(const ImageFileContents& contents, const std::string& path) {
   const std::array<int, 3> source = {contents.channel("R"), contents.channel("G"),
                                      contents.channel("B")};
   if (std::any_of(source.begin(), source.end(), [](int c) { return c < 0; })) {
-    std::string names;
-    for (const auto& name : contents.image.channel_names)
-      names += (names.empty() ? "" : ", ") + name;
     throw input_error(path, "the EXR has no beauty channels R, G, B (channels: " +
-                                (names.empty() ? std::string("none") : names) + ")");
+                                join(contents.image.channel_names, ", ", "none") + ")");
   }
   const Image& in = contents.image;
   Image beauty;

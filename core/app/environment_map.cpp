@@ -11,6 +11,7 @@
 
 #include "color/image_output.h"
 #include "core/error.h"
+#include "core/strings.h"
 
 namespace prism {
 namespace {
@@ -37,16 +38,7 @@ ImageFileContents read_environment_file(const fs::path& path) {
   }
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-std::string channel_list(const Image& image) {
-  std::string names;
-  for (const auto& name : image.channel_names) names += (names.empty() ? "" : ", ") + name;
-  return names.empty() ? "none" : names;
-}
+std::string channel_list(const Image& image) { return join(image.channel_names, ", ", "none"); }
 
 /// The R, G, B channels of the file as a 3-channel image, checked for values that are not
 /// radiance. Checked before the colour conversion, so that a message quotes the file's values.
@@ -108,7 +100,7 @@ void choose_color_space(const ImageFileContents& contents, const ColorPipeline& 
     }
     // OpenImageIO labels every EXR "Linear" and every .hdr "linear" without saying which
     // primaries: exactly the case the scene_linear fallback is for, so not worth a warning.
-    if (std::string_view(attribute) == "oiio:ColorSpace" && lower(name) == "linear") continue;
+    if (std::string_view(attribute) == "oiio:ColorSpace" && to_lower(name) == "linear") continue;
     unknown.push_back(fmt::format("{} '{}'", attribute, name));
   }
   // A config without scene_linear renders in the --working-space the user chose.

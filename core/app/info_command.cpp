@@ -8,8 +8,8 @@
 #include "accel/accelerator.h"
 #include "core/app/commands.h"
 #include "core/app/component_params.h"
-#include "core/app/timing.h"
 #include "core/parallel.h"
+#include "core/timing.h"
 #include "scenes/scene_loader.h"
 
 namespace prism {

@@ -14,11 +14,12 @@
 #include "core/app/environment_map.h"
 #include "core/app/provenance.h"
 #include "core/app/sample_rate_image.h"
-#include "core/app/timing.h"
 #include "core/film.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/samplers.h"
+#include "core/strings.h"
+#include "core/timing.h"
 #include "integrators/integrator.h"
 #include "scenes/scene_loader.h"
 
@@ -51,12 +52,13 @@ void write_outputs(const std::vector<OutputFile>& outputs, const Image& image,
 std::string summary_line(const std::filesystem::path& scene, const RenderSettings& settings,
                          const RenderRecord& record) {
   const double per_second = samples_per_second(settings, record);
-  std::string files;
-  for (const auto& o : settings.outputs) files += (files.empty() ? "" : ", ") + o.path.string();
+  std::vector<std::string> files;
+  for (const auto& o : settings.outputs) files.push_back(o.path.string());
   return fmt::format(
       "{}: {} build {:.4g} ms, {} render {}x{} at {} spp {:.4g} ms ({:.3g} Msamples/s) -> {}",
       scene.filename().string(), settings.accelerator, record.build_ms, settings.integrator,
-      settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6, files);
+      settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6,
+      join(files));
 }
 
 /// Where the adaptive sampler's "sample rate" picture goes: <first output>_rate.png.

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/strings.h"
 #include "scenes/scene_loader.h"
 
 namespace prism {
@@ -41,14 +42,7 @@ void check_resolution(long long width, long long height, const std::string& opti
   bad_option(option, problem);
 }
 
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-bool is_exr_path(const std::filesystem::path& path) { return lower_extension(path) == ".exr"; }
+bool is_exr_path(const std::filesystem::path& path) { return lower_case_extension(path) == ".exr"; }
 
 uint64_t parse_seed(const std::string& text) {
   uint64_t seed = 0;
@@ -166,7 +160,7 @@ std::vector<OutputFile> plan_outputs(const RenderOptions& options,
   if (options.exr && !outputs.front().exr) {
     outputs.push_back({std::filesystem::path(primary).replace_extension(".exr"), true});
   }
-  if (options.png && lower_extension(primary) != ".png") {
+  if (options.png && lower_case_extension(primary) != ".png") {
     outputs.push_back({std::filesystem::path(primary).replace_extension(".png"), false});
   }
   return outputs;

@@ -1,5 +1,7 @@
 #include "scenes/json/json_document.h"
 
+#include "core/strings.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -270,16 +272,15 @@ void JsonNode::check_keys(std::initializer_list<std::string_view> allowed) const
   expect_object();
   for (const auto& [key, unused] : value_->items()) {
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    std::string valid, closest;
+    std::string closest;
     size_t best = std::numeric_limits<size_t>::max();
     for (std::string_view a : allowed) {
-      valid += (valid.empty() ? "" : ", ") + std::string(a);
       const size_t d = edit_distance(key, a);
       if (d < best) best = d, closest = a;
     }
     std::string message = "unknown key '" + key + "'";
     if (best <= 2) message += " (did you mean '" + closest + "'?)";
-    message += "; valid keys: " + valid;
+    message += "; valid keys: " + join(std::vector<std::string>(allowed.begin(), allowed.end()));
     JsonPath p = path_;
     p.push_back({key});
     doc_->fail(p, message);

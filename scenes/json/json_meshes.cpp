@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/strings.h"
 #include "scenes/mesh_file_loader.h"
 #include "scenes/mesh_generator.h"
 
@@ -166,10 +167,8 @@ uint32_t MaterialNames::resolve(const JsonNode& reference) const {
   const std::string name = reference.string();
   const auto it = ids_.find(name);
   if (it != ids_.end()) return it->second;
-  std::string defined;
-  for (const auto& n : names_) defined += (defined.empty() ? "" : ", ") + n;
   reference.fail("unknown material '" + name +
-                 "'; defined materials: " + (defined.empty() ? "(none)" : defined));
+                 "'; defined materials: " + join(names_, ", ", "(none)"));
 }
 
 TriangleMesh read_mesh(const JsonNode& node, const MaterialNames& materials,

@@ -5,9 +5,9 @@
 #include <optional>
 
 #include "core/math.h"
-#include "integrators/sampling/statistics.h"
+#include "tests/support/statistics.h"
 
-namespace prism {
+namespace prism::test {
 
 /// Settings of directional_chi_square().
 struct DirectionalChiSquareOptions {
@@ -29,4 +29,4 @@ using DirectionPdf = std::function<double(const Vec3&)>;
 ChiSquareResult directional_chi_square(const DirectionSampler& sample, const DirectionPdf& pdf,
                                        const DirectionalChiSquareOptions& options = {});
 
-}  // namespace prism
+}  // namespace prism::test

@@ -15,7 +15,7 @@
 
 #include "core/error.h"
 #include "scenes/scene_loader.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace prism::test::collada {
 

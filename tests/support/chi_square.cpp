@@ -1,4 +1,4 @@
-#include "integrators/sampling/chi_square.h"
+#include "tests/support/chi_square.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "core/sampler.h"
 
-namespace prism {
+namespace prism::test {
 namespace {
 
 constexpr double kGaussNodes[6] = {-0.9324695142031521, -0.6612093864662645, -0.2386191860831969,
@@ -107,4 +107,4 @@ ChiSquareResult directional_chi_square(const DirectionSampler& sample, const Dir
   return chi_square_test(observed, expected);
 }
 
-}  // namespace prism
+}  // namespace prism::test

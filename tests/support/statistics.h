@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace prism {
+namespace prism::test {
 
 /// Upper regularized incomplete gamma function Q(a, x) = Gamma(a, x) / Gamma(a), a > 0, x >= 0.
 double incomplete_gamma_q(double a, double x);
@@ -41,4 +41,4 @@ double sidak_significance(double alpha, size_t tests);
 /// discovery rate `q`.
 std::vector<bool> benjamini_hochberg(std::span<const double> p_values, double q);
 
-}  // namespace prism
+}  // namespace prism::test

@@ -1,11 +1,11 @@
-#include "integrators/sampling/statistics.h"
+#include "tests/support/statistics.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <sstream>
 
-namespace prism {
+namespace prism::test {
 namespace {
 
 /// P(a, x) by its power series; converges quickly for x < a + 1.
@@ -114,4 +114,4 @@ std::vector<bool> benjamini_hochberg(std::span<const double> p_values, double q)
   return rejected;
 }
 
-}  // namespace prism
+}  // namespace prism::test
