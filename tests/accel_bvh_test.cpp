@@ -8,10 +8,10 @@
 
 #include "accel/accelerator.h"
 #include "accel/brute/brute_accelerator.h"
-#include "accel/bvh/bvh2.h"
-#include "accel/bvh/bvh_accelerator.h"
-#include "accel/bvh/median_split_builder.h"
-#include "accel/primitive_ref.h"
+#include "accel/bvh/homework/homework_bvh.h"
+#include "accel/bvh/homework/homework_bvh_accelerator.h"
+#include "accel/bvh/homework/homework_bvh_builder.h"
+#include "accel/primitive_query.h"
 #include "accel/validation/hit_comparison.h"
 #include "accel/validation/ray_sets.h"
 
@@ -45,18 +45,18 @@ SceneGeometry small_scene(int triangles) {
 TEST(AccelBvh, TreeInvariantsHoldForEveryLeafSize) {
   const SceneGeometry g = small_scene(400);
   for (uint32_t leaf : {1u, 2u, 3u, 4u, 16u, 255u}) {
-    const auto prims = gather_build_primitives(g);
-    const Bvh2 bvh = build_median_split(prims, MedianSplitOptions{leaf});
-    EXPECT_NO_THROW(check_bvh2(bvh, prims)) << "leaf size " << leaf;
-    for (const Bvh2Node& n : bvh.nodes) {
+    const auto prims = gather_homework_primitives(g);
+    const HomeworkBvh bvh = build_homework_bvh(prims, HomeworkBvhOptions{leaf});
+    EXPECT_NO_THROW(check_homework_bvh(bvh, prims)) << "leaf size " << leaf;
+    for (const HomeworkBvhNode& n : bvh.nodes) {
       if (n.is_leaf()) {
         EXPECT_LE(n.count, leaf);
       }
     }
-    const AccelStats s = bvh2_stats(bvh);
+    const AccelStats s = homework_bvh_stats(bvh);
     EXPECT_EQ(s.nodes, bvh.nodes.size());
     EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
-    EXPECT_EQ(s.bytes, bvh.nodes.size() * sizeof(Bvh2Node) + prims.size() * sizeof(PrimitiveRef));
+    EXPECT_EQ(s.bytes, bvh.nodes.size() * sizeof(HomeworkBvhNode) + prims.size() * sizeof(PrimitiveId));
     // Median splits halve the count: depth is at most ceil(log2(n / leaf)) + 1.
     EXPECT_LE(double(s.max_depth), std::ceil(std::log2(double(prims.size()) / leaf)) + 1.0);
   }
@@ -64,15 +64,15 @@ TEST(AccelBvh, TreeInvariantsHoldForEveryLeafSize) {
 
 TEST(AccelBvh, CheckCatchesABrokenTree) {
   const SceneGeometry g = small_scene(40);
-  const auto prims = gather_build_primitives(g);
-  Bvh2 bvh = build_median_split(prims, {});
-  ASSERT_NO_THROW(check_bvh2(bvh, prims));
-  Bvh2 shrunk = bvh;
+  const auto prims = gather_homework_primitives(g);
+  HomeworkBvh bvh = build_homework_bvh(prims, {});
+  ASSERT_NO_THROW(check_homework_bvh(bvh, prims));
+  HomeworkBvh shrunk = bvh;
   shrunk.nodes.back().upper -= Vec3(0.5f);
-  EXPECT_THROW(check_bvh2(shrunk, prims), Error);
-  Bvh2 repeated = bvh;
+  EXPECT_THROW(check_homework_bvh(shrunk, prims), Error);
+  HomeworkBvh repeated = bvh;
   repeated.prims[1] = repeated.prims[0];
-  EXPECT_THROW(check_bvh2(repeated, prims), Error);
+  EXPECT_THROW(check_homework_bvh(repeated, prims), Error);
 }
 
 TEST(AccelBvh, MillionIdenticalTrianglesBuildShallowAndTieToTheFirst) {
@@ -82,7 +82,7 @@ TEST(AccelBvh, MillionIdenticalTrianglesBuildShallowAndTieToTheFirst) {
   mesh.triangles.assign(1'000'000, glm::uvec3(0, 1, 2));
   mesh.finalize();
   g.meshes.push_back(std::move(mesh));
-  BvhAccelerator bvh(ParamSet{});
+  HomeworkBvhAccelerator bvh(ParamSet{});
   bvh.build(g);
   const AccelStats s = bvh.stats();
   EXPECT_LE(s.max_depth, 20u);  // ceil(log2(1e6 / 4)) = 18
@@ -114,7 +114,7 @@ TEST(AccelBvh, CoincidentPrimitivesOfBothKindsTieByIds) {
   for (int leaf : {1, 2, 4}) {
     ParamSet params;
     params.set("bvh.max_leaf_size", std::to_string(leaf));
-    BvhAccelerator bvh(params);
+    HomeworkBvhAccelerator bvh(params);
     bvh.build(g);
     Ray r;
     r.direction = {0, 0, 1};
@@ -141,7 +141,7 @@ TEST(AccelBvh, EqualsBruteBitForBitOnRandomRays) {
   for (int leaf : {1, 4, 9}) {
     ParamSet params;
     params.set("bvh.max_leaf_size", std::to_string(leaf));
-    BvhAccelerator bvh(params);
+    HomeworkBvhAccelerator bvh(params);
     bvh.build(g);
     size_t hits = 0;
     for (const auto* set : {&rays, &features}) {

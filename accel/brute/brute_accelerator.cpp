@@ -1,19 +1,12 @@
 #include "accel/brute/brute_accelerator.h"
 
-#include <chrono>
-
-#include "accel/primitive_ref.h"
-#include "accel/ray_query.h"
-#include "core/error.h"
+#include "accel/primitive_query.h"
 
 namespace prism {
 
 BruteAccelerator::BruteAccelerator(const ParamSet& /*params*/) {}
 
-void BruteAccelerator::build(const SceneGeometry& geometry) {
-  const auto start = std::chrono::steady_clock::now();
-  geometry.validate();
-  geometry_ = &geometry;
+void BruteAccelerator::build_structure(const SceneGeometry& geometry) {
   stats_ = {};
   const size_t count = geometry.primitive_count();
   if (count > 0) {
@@ -21,17 +14,12 @@ void BruteAccelerator::build(const SceneGeometry& geometry) {
     stats_.leaves = 1;
     stats_.sah_cost = double(count);  // one leaf: every primitive is tested
   }
-  stats_.build_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::optional<Hit> BruteAccelerator::intersect(const Ray& ray) const {
-  PRISM_CHECK(geometry_ != nullptr);
-  const std::optional<Ray> prepared = prepare_query(ray);
-  if (!prepared) return std::nullopt;
-  PrimitiveQuery query(*prepared);
+std::optional<Hit> BruteAccelerator::intersect_prepared(const Ray& ray) const {
+  PrimitiveQuery query(ray);
   std::optional<Hit> best;
-  const SceneGeometry& g = *geometry_;
+  const SceneGeometry& g = geometry();
   for (uint32_t m = 0; m < g.meshes.size(); ++m) {
     // The hot loop of the reference: plain arrays, core's triangle test, the shared order.
     const Vec3* positions = g.meshes[m].positions.data();
@@ -51,12 +39,9 @@ std::optional<Hit> BruteAccelerator::intersect(const Ray& ray) const {
   return best;
 }
 
-bool BruteAccelerator::occluded(const Ray& ray) const {
-  PRISM_CHECK(geometry_ != nullptr);
-  const std::optional<Ray> prepared = prepare_query(ray);
-  if (!prepared) return false;
-  const PrimitiveQuery query(*prepared);
-  const SceneGeometry& g = *geometry_;
+bool BruteAccelerator::occluded_prepared(const Ray& ray) const {
+  const PrimitiveQuery query(ray);
+  const SceneGeometry& g = geometry();
   for (uint32_t m = 0; m < g.meshes.size(); ++m) {
     const uint32_t n = static_cast<uint32_t>(g.meshes[m].triangles.size());
     for (uint32_t i = 0; i < n; ++i) {

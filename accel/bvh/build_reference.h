@@ -1,7 +1,7 @@
 #pragma once
 
-// Plain data shared by the BVH builders (median, binned SAH, spatial splits) and by the collapse
-// into wide nodes: primitive references and the binary tree every builder produces.
+// Plain data shared by the wide BVH's builders (object splits by binned SAH or median, spatial
+// splits) and by the collapse into wide nodes: primitive references and the binary tree they build.
 
 #include <cstdint>
 #include <memory>
@@ -30,7 +30,7 @@ struct alignas(16) PrimRef {
 
 /// How the binary tree is split.
 enum class SplitMethod {
-  kMedian,   ///< the homework's split: middle of the centroids along the widest axis
+  kMedian,   ///< the homework's rule: the median primitive along the widest centroid axis
   kSah,      ///< binned surface area heuristic on centroids
   kSpatial,  ///< binned SAH plus spatial splits that clip long triangles (SBVH)
 };

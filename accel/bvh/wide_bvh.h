@@ -22,7 +22,7 @@ struct WideBvh {
   uint32_t root = 0;         ///< a node index or a leaf reference
   bool empty = true;         ///< no primitives: every query misses
   float scene_scale = 0.0f;  ///< largest |coordinate| of the bounds (for the traversal's padding)
-  AccelStats stats;  ///< nodes, leaves, depth, bytes, SAH cost (build_ms left to the caller)
+  AccelStats stats;  ///< nodes, leaves, depth, bytes, SAH cost (build_ms: Accelerator::stats())
 };
 
 /// Collapses `binary` (built over `geometry`) into a W-wide tree: each wide node adopts the

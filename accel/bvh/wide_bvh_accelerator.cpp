@@ -1,12 +1,11 @@
 #include "accel/bvh/wide_bvh_accelerator.h"
 
-#include <chrono>
+#include <type_traits>
 
 #include "accel/bvh/binned_sah_builder.h"
-#include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/cpu_features.h"
+#include "accel/bvh/homework/homework_bvh_accelerator.h"
 #include "accel/bvh/spatial_split_builder.h"
-#include "accel/ray_query.h"
 #include "core/error.h"
 
 namespace prism {
@@ -90,7 +89,7 @@ std::unique_ptr<Accelerator> make_bvh_accelerator(const ParamSet& params) {
     params.get_string("bvh.split", "");
     params.get_string("bvh.layout", "");
     params.get_string("bvh.isa", "");  // the homework traversal is scalar
-    return std::make_unique<BvhAccelerator>(params);
+    return std::make_unique<HomeworkBvhAccelerator>(params);
   }
   return std::make_unique<WideBvhAccelerator>(parse_wide_bvh_options(params));
 }
@@ -105,67 +104,63 @@ WideBvhAccelerator::WideBvhAccelerator(WideBvhOptions options) : options_(std::m
   occluded_fn_ = kernels_->occluded[slot];
 }
 
-template <int W>
-void WideBvhAccelerator::adopt(WideBvh<W>&& bvh) {
-  WideBvh<W>* target;
-  if constexpr (W == 2) {
-    target = &bvh2_;
-  } else if constexpr (W == 4) {
-    target = &bvh4_;
-  } else {
-    target = &bvh8_;
-  }
-  WideBvh<W>& mine = *target;
-  mine = std::move(bvh);
-  empty_ = mine.empty;
-  view_.scene_scale = mine.scene_scale;
-  stats_ = mine.stats;
-  view_.nodes = mine.nodes.data();
-  view_.triangle_blocks = mine.triangle_blocks.data();
-  view_.sphere_blocks = mine.sphere_blocks.empty() ? nullptr : mine.sphere_blocks[0].sphere;
-  view_.root = mine.root;
-}
-
-void WideBvhAccelerator::build(const SceneGeometry& geometry) {
-  const auto start = std::chrono::steady_clock::now();
-  geometry.validate();
-  geometry_ = &geometry;
-  view_.spheres = geometry.spheres.data();
-  view_.sphere_geom_id = geometry.sphere_geom_id();
+void WideBvhAccelerator::build_structure(const SceneGeometry& geometry) {
+  tree_ = std::monostate{};
+  empty_ = true;
   std::vector<PrimRef> refs = make_prim_refs(geometry);
-  BinaryBvh binary =
+  const BinaryBvh binary =
       options_.build.split == SplitMethod::kSpatial
           ? build_spatial_split_bvh(geometry, std::move(refs), options_.build)
           : build_object_split_bvh(std::move(refs), geometry.sphere_geom_id(), options_.build);
   switch (options_.width) {
     case 2:
-      adopt<2>(collapse_to_wide<2>(binary, geometry));
+      tree_ = collapse_to_wide<2>(binary, geometry);
       break;
     case 4:
-      adopt<4>(collapse_to_wide<4>(binary, geometry));
+      tree_ = collapse_to_wide<4>(binary, geometry);
       break;
     default:
-      adopt<8>(collapse_to_wide<8>(binary, geometry));
+      tree_ = collapse_to_wide<8>(binary, geometry);
       break;
   }
-  stats_.build_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::visit(
+      [&](const auto& bvh) {
+        if constexpr (!std::is_same_v<std::decay_t<decltype(bvh)>, std::monostate>) {
+          view_.nodes = bvh.nodes.data();
+          view_.triangle_blocks = bvh.triangle_blocks.data();
+          view_.sphere_blocks = bvh.sphere_blocks.empty() ? nullptr : bvh.sphere_blocks[0].sphere;
+          view_.spheres = geometry.spheres.data();
+          view_.sphere_geom_id = geometry.sphere_geom_id();
+          view_.root = bvh.root;
+          view_.scene_scale = bvh.scene_scale;
+          empty_ = bvh.empty;
+        }
+      },
+      tree_);
 }
 
-std::optional<Hit> WideBvhAccelerator::intersect(const Ray& ray) const {
-  PRISM_CHECK(geometry_ != nullptr);
-  const std::optional<Ray> prepared = prepare_query(ray);
-  if (empty_ || !prepared) return std::nullopt;
+AccelStats WideBvhAccelerator::structure_stats() const {
+  return std::visit(
+      [](const auto& bvh) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(bvh)>, std::monostate>) {
+          return AccelStats{};
+        } else {
+          return bvh.stats;
+        }
+      },
+      tree_);
+}
+
+std::optional<Hit> WideBvhAccelerator::intersect_prepared(const Ray& ray) const {
+  if (empty_) return std::nullopt;
   WideHit hit = kNoWideHit;
-  if (!intersect_fn_(view_, *prepared, hit)) return std::nullopt;
+  if (!intersect_fn_(view_, ray, hit)) return std::nullopt;
   return Hit{hit.t, hit.u, hit.v, hit.geom_id, hit.prim_id};
 }
 
-bool WideBvhAccelerator::occluded(const Ray& ray) const {
-  PRISM_CHECK(geometry_ != nullptr);
-  const std::optional<Ray> prepared = prepare_query(ray);
-  if (empty_ || !prepared) return false;
-  return occluded_fn_(view_, *prepared);
+bool WideBvhAccelerator::occluded_prepared(const Ray& ray) const {
+  if (empty_) return false;
+  return occluded_fn_(view_, ray);
 }
 
 }  // namespace prism

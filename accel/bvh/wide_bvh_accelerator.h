@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <variant>
 
 #include "accel/accelerator.h"
 #include "accel/bvh/build_reference.h"
@@ -22,51 +23,47 @@ struct WideBvhOptions {
 /// the key on a bad value, and when bvh.isa names an instruction set this CPU lacks.
 WideBvhOptions parse_wide_bvh_options(const ParamSet& params);
 
-/// The registry's `bvh`: the homework's binary median-split BVH (BvhAccelerator) for
-/// bvh.split=median with bvh.layout=bvh2, a WideBvhAccelerator for every other combination
-/// (default: sah, bvh8). Throws Error(kUsage) on a bad parameter value.
+/// The registry's `bvh`: the homework's BVH (HomeworkBvhAccelerator) for bvh.split=median with
+/// bvh.layout=bvh2, a WideBvhAccelerator for every other combination (default: sah, bvh8).
+/// Throws Error(kUsage) on a bad parameter value.
 std::unique_ptr<Accelerator> make_bvh_accelerator(const ParamSet& params);
 
 /// "bvh2", "bvh4", "bvh8" for a width; "median", "sah", "sbvh" for a split.
 std::string layout_name(int width);
 std::string split_name(SplitMethod split);
 
-/// The custom BVH: a binary tree from the chosen builder collapsed into 2-, 4- or 8-wide SoA
-/// nodes, traversed by the best kernels this CPU runs (AVX-512, AVX2 or portable). Queries
-/// follow prepare_query() (accel/ray_query.h) and hits are bit-identical to the brute-force
-/// backend's: the same primitive tests, and exact ties go to the lowest (geom_id, prim_id)
-/// (comes_before()).
+/// The fast handwritten BVH: a binary tree from the chosen builder (binned SAH, median or
+/// SBVH) collapsed into 2-, 4- or 8-wide SoA nodes, traversed by the best kernels this CPU runs
+/// (AVX-512, AVX2 or portable). Hits are bit-identical to the brute-force backend's: the same
+/// primitive tests, and exact ties go to the lowest (geom_id, prim_id) (comes_before()).
 class WideBvhAccelerator final : public Accelerator {
  public:
   explicit WideBvhAccelerator(WideBvhOptions options);
 
   std::string_view name() const override { return "bvh"; }
-  void build(const SceneGeometry& geometry) override;
-  std::optional<Hit> intersect(const Ray& ray) const override;
-  bool occluded(const Ray& ray) const override;
-  using Accelerator::intersect;
-  AccelStats stats() const override { return stats_; }
 
   /// The instruction set of the kernels in use ("avx512", "avx2", "generic").
   std::string_view isa() const { return kernels_->isa; }
   const WideBvhOptions& options() const { return options_; }
 
+ protected:
+  void build_structure(const SceneGeometry& geometry) override;
+  std::optional<Hit> intersect_prepared(const Ray& ray) const override;
+  bool occluded_prepared(const Ray& ray) const override;
+  AccelStats structure_stats() const override;
+
  private:
-  template <int W>
-  void adopt(WideBvh<W>&& bvh);
+  /// The tree of the last build, of the width options_.width names; monostate before a build.
+  using Tree = std::variant<std::monostate, WideBvh<2>, WideBvh<4>, WideBvh<8>>;
 
   WideBvhOptions options_;
   const WideKernels* kernels_ = nullptr;
-  const SceneGeometry* geometry_ = nullptr;
-  // The active tree: exactly one of these is non-empty after build().
-  WideBvh<2> bvh2_;
-  WideBvh<4> bvh4_;
-  WideBvh<8> bvh8_;
-  WideBvhView view_{};
-  bool empty_ = true;
   WideIntersectFn intersect_fn_ = nullptr;
   WideOccludedFn occluded_fn_ = nullptr;
-  AccelStats stats_;
+  Tree tree_;
+  /// What the kernels read: pointers into tree_ and the geometry; valid when !empty_.
+  WideBvhView view_{};
+  bool empty_ = true;  ///< no tree, or a tree without primitives: every query misses
 };
 
 }  // namespace prism

@@ -3,12 +3,10 @@
 #include "core/primitive_intersection.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
 #include "accel/embree/embree_spheres.h"
-#include "accel/ray_query.h"
 #include "core/error.h"
 
 namespace prism {
@@ -61,7 +59,7 @@ void EmbreeAccelerator::refine_triangle_hit(const Ray& ray, Hit& hit) const {
   // primitive gets (t, u, v) a few ulps apart and interpolated normals differ in the last bits.
   // Re-running the shared test on the primitive Embree chose makes the backends differ only in
   // which primitive they choose (ties), never in the values for it.
-  const TriangleMesh& mesh = geometry_->meshes[hit.geom_id];
+  const TriangleMesh& mesh = geometry().meshes[hit.geom_id];
   const glm::uvec3 tri = mesh.triangles[hit.prim_id];
   const auto exact = intersect_triangle(WatertightRay(ray), mesh.positions[tri.x],
                                         mesh.positions[tri.y], mesh.positions[tri.z]);
@@ -82,14 +80,11 @@ EmbreeAccelerator::~EmbreeAccelerator() {
   if (scene_ != nullptr) rtcReleaseScene(scene_);
 }
 
-void EmbreeAccelerator::build(const SceneGeometry& geometry) {
-  const auto start = std::chrono::steady_clock::now();
-  geometry.validate();
+void EmbreeAccelerator::build_structure(const SceneGeometry& geometry) {
   if (scene_ != nullptr) {
     rtcReleaseScene(scene_);
     scene_ = nullptr;
   }
-  geometry_ = nullptr;
   RTCDevice device = device_->handle();
   device_->throw_pending_error("before building the Embree scene");
 
@@ -114,42 +109,33 @@ void EmbreeAccelerator::build(const SceneGeometry& geometry) {
     throw;
   }
   scene_ = scene;
-  geometry_ = &geometry;
   stats_ = {};
   stats_.bytes = device_->bytes_in_use();
-  stats_.build_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::optional<Hit> EmbreeAccelerator::intersect(const Ray& ray) const {
-  PRISM_CHECK(scene_ != nullptr);
-  const std::optional<Ray> prepared = prepare_query(ray);
-  if (!prepared) return std::nullopt;
+std::optional<Hit> EmbreeAccelerator::intersect_prepared(const Ray& ray) const {
   EmbreeQueryContext context;
   rtcInitIntersectContext(&context.base);
-  context.tmin = prepared->tmin;
+  context.tmin = ray.tmin;
   RTCRayHit rayhit;
-  fill_ray(*prepared, rayhit.ray);
+  fill_ray(ray, rayhit.ray);
   rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context.base, &rayhit);
   if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  const float t = std::clamp(rayhit.ray.tfar, prepared->tmin, prepared->tmax);
+  const float t = std::clamp(rayhit.ray.tfar, ray.tmin, ray.tmax);
   Hit hit{t, rayhit.hit.u, rayhit.hit.v, rayhit.hit.geomID, rayhit.hit.primID};
-  if (refine_ && !geometry_->is_sphere(hit.geom_id)) refine_triangle_hit(*prepared, hit);
+  if (refine_ && !geometry().is_sphere(hit.geom_id)) refine_triangle_hit(ray, hit);
   return hit;
 }
 
-bool EmbreeAccelerator::occluded(const Ray& ray) const {
-  PRISM_CHECK(scene_ != nullptr);
-  const std::optional<Ray> prepared = prepare_query(ray);
-  if (!prepared) return false;
+bool EmbreeAccelerator::occluded_prepared(const Ray& ray) const {
   EmbreeQueryContext context;
   rtcInitIntersectContext(&context.base);
-  context.tmin = prepared->tmin;
+  context.tmin = ray.tmin;
   RTCRay embree_ray;
-  fill_ray(*prepared, embree_ray);
+  fill_ray(ray, embree_ray);
   rtcOccluded1(scene_, &context.base, &embree_ray);
   return embree_ray.tfar == -kInfinity;
 }

@@ -39,25 +39,26 @@ class EmbreeAccelerator final : public Accelerator {
   EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
 
   std::string_view name() const override { return "embree"; }
-  /// Validates `geometry` (throws Error(kInput)), builds the Embree scene on it and throws the
-  /// first error Embree reported (kResource for out-of-memory, else kInternal).
-  void build(const SceneGeometry& geometry) override;
-  std::optional<Hit> intersect(const Ray& ray) const override;
-  bool occluded(const Ray& ray) const override;
-  /// bytes (Embree's memory monitor: everything the device holds after the build) and build
-  /// time; Embree does not expose node counts, depth or SAH cost, so those are 0.
-  AccelStats stats() const override { return stats_; }
+
+ protected:
+  /// Builds the Embree scene on `geometry` and throws the first error Embree reported
+  /// (kResource for out-of-memory, else kInternal).
+  void build_structure(const SceneGeometry& geometry) override;
+  std::optional<Hit> intersect_prepared(const Ray& ray) const override;
+  bool occluded_prepared(const Ray& ray) const override;
+  /// bytes (Embree's memory monitor: everything the device holds after the build); Embree does
+  /// not expose node counts, depth or SAH cost, so those are 0.
+  AccelStats structure_stats() const override { return stats_; }
 
  private:
-  bool robust_ = false;
-  bool refine_ = true;
-  RTCBuildQuality quality_ = RTC_BUILD_QUALITY_MEDIUM;
   /// Recomputes t, u, v of a triangle hit with core's watertight test (embree.refine).
   void refine_triangle_hit(const Ray& ray, Hit& hit) const;
 
+  bool robust_ = false;
+  bool refine_ = true;
+  RTCBuildQuality quality_ = RTC_BUILD_QUALITY_MEDIUM;
   std::unique_ptr<EmbreeDevice> device_;
   RTCScene scene_ = nullptr;
-  const SceneGeometry* geometry_ = nullptr;
   AccelStats stats_;
 };
 

@@ -142,7 +142,8 @@ int run_render_command(const RenderOptions& options) {
     record.environment = options.environment_map;
     record.environment_space = environment->color_space;
   }
-  record.build_ms = time_ms([&] { accel->build(scene.geometry); });
+  accel->build(scene.geometry);
+  record.build_ms = accel->stats().build_ms;
 
   Film film(settings.width, settings.height);
   ProgressReporter progress(

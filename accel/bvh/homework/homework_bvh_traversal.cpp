@@ -1,10 +1,10 @@
-#include "accel/bvh/bvh2_traversal.h"
+#include "accel/bvh/homework/homework_bvh_traversal.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#include "accel/primitive_ref.h"
+#include "accel/primitive_query.h"
 
 namespace prism {
 namespace {
@@ -29,7 +29,8 @@ struct BoxRay {
 };
 
 /// Whether the widened box interval of `node` overlaps [tmin, tmax]; `entry` is where.
-inline bool enter_box(const BoxRay& r, const Bvh2Node& node, float tmin, float tmax, float& entry) {
+inline bool enter_box(const BoxRay& r, const HomeworkBvhNode& node, float tmin, float tmax,
+                      float& entry) {
   float t_lo[3], t_hi[3];
   for (int a = 0; a < 3; ++a) {
     const float lo = r.negative[a] ? node.upper[a] : node.lower[a];
@@ -62,19 +63,19 @@ struct StackEntry {
 /// One traversal for both queries: kAnyHit returns at the first primitive hit, otherwise the
 /// closest hit is kept in `best` and the query narrowed to it.
 template <bool kAnyHit>
-bool traverse(const Bvh2& bvh, const SceneGeometry& geometry, PrimitiveQuery& query,
+bool traverse(const HomeworkBvh& bvh, const SceneGeometry& geometry, PrimitiveQuery& query,
               std::optional<Hit>& best) {
   if (bvh.nodes.empty()) return false;
   const BoxRay box_ray(query.ray);
-  const Bvh2Node* nodes = bvh.nodes.data();
+  const HomeworkBvhNode* nodes = bvh.nodes.data();
   float root_entry;
   if (!enter_box(box_ray, nodes[0], query.ray.tmin, query.ray.tmax, root_entry)) return false;
 
-  StackEntry stack[kBvh2MaxDepth + 1];
+  StackEntry stack[kHomeworkBvhMaxDepth + 1];
   int size = 0;
   uint32_t current = 0;
   while (true) {
-    const Bvh2Node& node = nodes[current];
+    const HomeworkBvhNode& node = nodes[current];
     if (node.is_leaf()) {
       for (uint32_t k = node.index; k < node.index + node.count; ++k) {
         if constexpr (kAnyHit) {
@@ -116,14 +117,15 @@ bool traverse(const Bvh2& bvh, const SceneGeometry& geometry, PrimitiveQuery& qu
 
 }  // namespace
 
-std::optional<Hit> bvh2_intersect(const Bvh2& bvh, const SceneGeometry& geometry, const Ray& ray) {
+std::optional<Hit> homework_bvh_intersect(const HomeworkBvh& bvh, const SceneGeometry& geometry,
+                                          const Ray& ray) {
   PrimitiveQuery query(ray);
   std::optional<Hit> best;
   traverse<false>(bvh, geometry, query, best);
   return best;
 }
 
-bool bvh2_occluded(const Bvh2& bvh, const SceneGeometry& geometry, const Ray& ray) {
+bool homework_bvh_occluded(const HomeworkBvh& bvh, const SceneGeometry& geometry, const Ray& ray) {
   PrimitiveQuery query(ray);
   std::optional<Hit> unused;
   return traverse<true>(bvh, geometry, query, unused);

@@ -1,4 +1,4 @@
-#include "accel/bvh/median_split_builder.h"
+#include "accel/bvh/homework/homework_bvh_builder.h"
 
 #include <algorithm>
 #include <tuple>
@@ -16,18 +16,43 @@ struct BuildTask {
 };
 constexpr uint32_t kNoParent = ~0u;
 
-bool before(const BuildPrimitive& a, const BuildPrimitive& b, int axis) {
+bool before(const HomeworkBuildPrimitive& a, const HomeworkBuildPrimitive& b, int axis) {
   if (a.centroid[axis] != b.centroid[axis]) return a.centroid[axis] < b.centroid[axis];
-  return std::tie(a.ref.geom_id, a.ref.prim_id) < std::tie(b.ref.geom_id, b.ref.prim_id);
+  return std::tie(a.id.geom_id, a.id.prim_id) < std::tie(b.id.geom_id, b.id.prim_id);
 }
 
 }  // namespace
 
-Bvh2 build_median_split(std::vector<BuildPrimitive> prims, const MedianSplitOptions& options) {
+std::vector<HomeworkBuildPrimitive> gather_homework_primitives(const SceneGeometry& geometry) {
+  std::vector<HomeworkBuildPrimitive> prims;
+  prims.reserve(geometry.primitive_count());
+  for (uint32_t g = 0; g < geometry.meshes.size(); ++g) {
+    const TriangleMesh& mesh = geometry.meshes[g];
+    for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+      const glm::uvec3& tri = mesh.triangles[i];
+      HomeworkBuildPrimitive p;
+      p.bounds.extend(mesh.positions[tri.x]);
+      p.bounds.extend(mesh.positions[tri.y]);
+      p.bounds.extend(mesh.positions[tri.z]);
+      p.centroid = p.bounds.center();
+      p.id = {g, i};
+      prims.push_back(p);
+    }
+  }
+  const uint32_t sphere_geom = geometry.sphere_geom_id();
+  for (uint32_t i = 0; i < geometry.spheres.size(); ++i) {
+    const Sphere& s = geometry.spheres[i];
+    prims.push_back({s.bounds(), s.center, {sphere_geom, i}});
+  }
+  return prims;
+}
+
+HomeworkBvh build_homework_bvh(std::vector<HomeworkBuildPrimitive> prims,
+                               const HomeworkBvhOptions& options) {
   PRISM_CHECK(options.max_leaf_size >= 1);
   // Primitive indices and counts are 32-bit in the node layout.
   PRISM_CHECK(prims.size() < size_t(1) << 32);
-  Bvh2 bvh;
+  HomeworkBvh bvh;
   if (prims.empty()) return bvh;
   const uint32_t n = static_cast<uint32_t>(prims.size());
   bvh.nodes.reserve(2 * (n / options.max_leaf_size) + 1);
@@ -47,7 +72,7 @@ Bvh2 build_median_split(std::vector<BuildPrimitive> prims, const MedianSplitOpti
       bounds.extend(prims[i].bounds);
       centroids.extend(prims[i].centroid);
     }
-    Bvh2Node node{bounds.lower, task.begin, bounds.upper, task.end - task.begin};
+    HomeworkBvhNode node{bounds.lower, task.begin, bounds.upper, task.end - task.begin};
     const uint32_t count = task.end - task.begin;
     if (count <= options.max_leaf_size) {
       bvh.nodes.push_back(node);
@@ -59,14 +84,15 @@ Bvh2 build_median_split(std::vector<BuildPrimitive> prims, const MedianSplitOpti
     // which bounds the depth even when all centroids coincide.
     const int axis = max_dimension(centroids.diagonal());
     const uint32_t mid = task.begin + count / 2;
-    std::nth_element(
-        prims.begin() + task.begin, prims.begin() + mid, prims.begin() + task.end,
-        [axis](const BuildPrimitive& a, const BuildPrimitive& b) { return before(a, b, axis); });
+    std::nth_element(prims.begin() + task.begin, prims.begin() + mid, prims.begin() + task.end,
+                     [axis](const HomeworkBuildPrimitive& a, const HomeworkBuildPrimitive& b) {
+                       return before(a, b, axis);
+                     });
     stack.push_back({mid, task.end, index, task.depth + 1});
     stack.push_back({task.begin, mid, kNoParent, task.depth + 1});
   }
   bvh.prims.resize(prims.size());
-  for (size_t i = 0; i < prims.size(); ++i) bvh.prims[i] = prims[i].ref;
+  for (size_t i = 0; i < prims.size(); ++i) bvh.prims[i] = prims[i].id;
   return bvh;
 }
 

@@ -1,4 +1,4 @@
-#include "accel/bvh/bvh2.h"
+#include "accel/bvh/homework/homework_bvh.h"
 
 #include <algorithm>
 #include <string>
@@ -10,9 +10,9 @@
 namespace prism {
 namespace {
 
-float node_area(const Bvh2Node& n) { return Bounds3{n.lower, n.upper}.area(); }
+float node_area(const HomeworkBvhNode& n) { return Bounds3{n.lower, n.upper}.area(); }
 
-bool contains(const Bvh2Node& n, const Bounds3& b) {
+bool contains(const HomeworkBvhNode& n, const Bounds3& b) {
   return glm::all(glm::lessThanEqual(n.lower, b.lower)) &&
          glm::all(glm::lessThanEqual(b.upper, n.upper));
 }
@@ -24,14 +24,14 @@ bool contains(const Bvh2Node& n, const Bounds3& b) {
 
 }  // namespace
 
-AccelStats bvh2_stats(const Bvh2& bvh) {
+AccelStats homework_bvh_stats(const HomeworkBvh& bvh) {
   AccelStats s;
   if (bvh.nodes.empty()) return s;
   s.nodes = bvh.nodes.size();
   s.max_depth = bvh.max_depth;
-  s.bytes = bvh.nodes.size() * sizeof(Bvh2Node) + bvh.prims.size() * sizeof(PrimitiveRef);
+  s.bytes = bvh.nodes.size() * sizeof(HomeworkBvhNode) + bvh.prims.size() * sizeof(PrimitiveId);
   const double root_area = node_area(bvh.nodes[0]);
-  for (const Bvh2Node& n : bvh.nodes) {
+  for (const HomeworkBvhNode& n : bvh.nodes) {
     // A flat or point-like root makes every ratio 0/0: count each node once instead.
     const double ratio = root_area > 0.0 ? node_area(n) / root_area : 1.0;
     if (n.is_leaf()) {
@@ -44,13 +44,13 @@ AccelStats bvh2_stats(const Bvh2& bvh) {
   return s;
 }
 
-void check_bvh2(const Bvh2& bvh, const std::vector<BuildPrimitive>& prims) {
+void check_homework_bvh(const HomeworkBvh& bvh, const std::vector<HomeworkBuildPrimitive>& prims) {
   if (bvh.nodes.empty() != prims.empty()) broken("empty tree for primitives or vice versa", 0);
   if (bvh.prims.size() != prims.size()) broken("primitive count differs from the input", 0);
   if (bvh.nodes.empty()) return;
-  const auto key = [](PrimitiveRef r) { return uint64_t(r.geom_id) << 32 | r.prim_id; };
-  std::unordered_map<uint64_t, const BuildPrimitive*> input;
-  for (const auto& p : prims) input.emplace(key(p.ref), &p);
+  const auto key = [](PrimitiveId r) { return uint64_t(r.geom_id) << 32 | r.prim_id; };
+  std::unordered_map<uint64_t, const HomeworkBuildPrimitive*> input;
+  for (const auto& p : prims) input.emplace(key(p.id), &p);
   std::unordered_set<uint64_t> seen;
 
   // Children follow their parent in the array, so one forward pass sees every parent first.
@@ -59,7 +59,7 @@ void check_bvh2(const Bvh2& bvh, const std::vector<BuildPrimitive>& prims) {
   references[0] = 1;
   size_t max_depth = 0;
   for (size_t i = 0; i < bvh.nodes.size(); ++i) {
-    const Bvh2Node& n = bvh.nodes[i];
+    const HomeworkBvhNode& n = bvh.nodes[i];
     if (references[i] != 1)
       broken("node is reached " + std::to_string(references[i]) + " times", i);
     max_depth = std::max(max_depth, depth[i]);
@@ -78,7 +78,7 @@ void check_bvh2(const Bvh2& bvh, const std::vector<BuildPrimitive>& prims) {
     for (const size_t c : {left, right}) {
       ++references[c];
       depth[c] = depth[i] + 1;
-      const Bvh2Node& child = bvh.nodes[c];
+      const HomeworkBvhNode& child = bvh.nodes[c];
       if (!contains(n, Bounds3{child.lower, child.upper})) broken("child box outside parent", i);
     }
   }
