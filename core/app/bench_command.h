@@ -3,8 +3,6 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
-
 namespace prism {
 
 /// What `prism bench` measures.
@@ -34,10 +32,5 @@ int run_bench_command(const BenchOptions& options);
 /// The scenes `prism bench` runs without SCENE: generated sphere, noisy sphere, soup and
 /// slivers at 10k, 100k, 1M and 10M triangles (quick: 10k and 100k), then the bundled scenes.
 std::vector<std::string> standard_bench_scenes(bool quick);
-
-/// The scene a bench SCENE argument names: a file, or a generated mesh "gen:KIND:COUNT" inside
-/// a closed box (so that bounce rays hit something) with a camera and a point light. `name`
-/// receives a short label ("soup_100k", "CBbunny"). Throws Error(kUsage/kInput).
-Scene load_bench_scene(const std::string& spec, std::string& name);
 
 }  // namespace prism

@@ -20,11 +20,11 @@
 #include "accel/validation/ray_sets.h"
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
-#include "core/app/bench_command.h"
 #include "core/app/component_params.h"
 #include "core/app/render_options.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "scenes/generated_scene.h"
 
 namespace prism {
 namespace {
@@ -220,7 +220,7 @@ int run_validate_command(const ValidateOptions& given) {
                          {{"accelerator", options.accel}, {"accelerator", options.against}});
 
   std::string name;
-  const Scene scene = load_bench_scene(options.scene, name);
+  const Scene scene = load_scene_or_generated(options.scene, name);
   a->build(scene.geometry);
   b->build(scene.geometry);
   const DoubleOracle oracle(scene.geometry);
