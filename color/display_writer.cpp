@@ -4,37 +4,24 @@
 #include <cmath>
 
 #include "color/image_writers.h"
+#include "color/output_plan.h"
 #include "core/strings.h"
 
 namespace prism {
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string display_format(const fs::path& path) {
-  const std::string ext = lower_case_extension(path);
-  if (ext == ".png") return "png";
-  if (ext == ".jpg" || ext == ".jpeg") return "jpeg";
-  if (ext == ".tif" || ext == ".tiff") return "tiff";
-  return {};
-}
-
-}  // namespace
-
 void write_display_image(const fs::path& path, const Image& image, const ImageMetadata& metadata,
                          const ColorPipeline& pipeline) {
-  const std::string format = display_format(path);
-  if (format.empty()) {
+  const PlannedOutput file = plan_image_file(path, {});
+  if (file.kind != OutputKind::kDisplayImage) {
     throw Error(ErrorKind::kUsage, "unsupported image type '" + path.extension().string() +
                                        "' for '" + path.string() +
-                                       "'; available: .exr, .png, .jpg, .jpeg, .tif, .tiff");
+                                       "'; available: " + join(image_output_extensions()));
   }
   PRISM_CHECK(image.width > 0 && image.height > 0);
   check_output_writable(path);
-  color_detail::write_display_file(path, format, image, metadata, pipeline);
+  color_detail::write_display_file(path, file.format, image, metadata, pipeline);
 }
-
-bool is_display_image_path(const fs::path& path) { return !display_format(path).empty(); }
 
 namespace color_detail {
 

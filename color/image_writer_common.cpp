@@ -85,8 +85,11 @@ void write_atomically(const fs::path& target, const std::string& format,
   try {
     auto out = OIIO::ImageOutput::create(format);
     if (!out) throw output_error(target, "no " + format + " writer: " + OIIO::geterror());
-    const bool ok =
-        out->open(temp.path().string(), spec) && out->write_image(type, pixels) && out->close();
+    const bool opened = out->open(temp.path().string(), spec);
+    // The folder was checked before the work; if it went away or became read-only since, say
+    // so as that check does rather than with OpenImageIO's message about the temporary file.
+    if (!opened) check_output_writable(target);
+    const bool ok = opened && out->write_image(type, pixels) && out->close();
     if (!ok) {
       const std::string reason = out->geterror();
       throw output_error(target, "cannot write the " + format +

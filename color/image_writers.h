@@ -1,8 +1,8 @@
 #pragma once
 
 // What the image writers of color/ share (internal to color/): the atomic write, the checks and
-// the header attributes every file carries, and the writers without their checks. Other code
-// uses image_output.h.
+// the header attributes every file carries, and the writers that output plans call once the
+// plan is validated. Other code uses image_output.h and output_plan.h.
 
 #include <OpenImageIO/imageio.h>
 
@@ -35,13 +35,14 @@ void check_finite(const std::vector<float>& values, const std::filesystem::path&
 void add_header_attributes(OIIO::ImageSpec& spec, const ImageMetadata& metadata,
                            const ColorPipeline& pipeline);
 
-/// write_exr without its checks: `options` is valid and the path was checked writable.
+/// write_exr without its checks: `options` is valid and the path was checked writable (an
+/// output plan validated both).
 void write_exr_file(const std::filesystem::path& path, const Image& image,
                     const ImageMetadata& metadata, const ColorPipeline& pipeline,
                     const ExrOptions& options);
 
-/// write_display_image without its checks: `format` is "png", "jpeg" or "tiff" and the path was
-/// checked writable.
+/// write_display_image without its checks: `format` ("png", "jpeg" or "tiff") comes from the
+/// output plan, whose validation checked the path writable.
 void write_display_file(const std::filesystem::path& path, const std::string& format,
                         const Image& image, const ImageMetadata& metadata,
                         const ColorPipeline& pipeline);
