@@ -1,4 +1,5 @@
-// The scene-linear EXR writer.
+// The scene-linear EXR writer. The layout and attributes are described in docs/OUTPUT.md
+// ("EXR output").
 
 #include <algorithm>
 #include <climits>
