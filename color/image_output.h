@@ -10,6 +10,9 @@
 #include "color/color_pipeline.h"
 #include "core/image.h"
 
+// Image files one at a time: the atomic writers and the reader. A render plans and writes all
+// its files through output_plan.h.
+
 namespace prism {
 
 /// EXR encoding choices (--exr-type, --exr-compression).
@@ -19,43 +22,36 @@ struct ExrOptions {
 };
 
 /// Throws Error(kUsage) naming the bad value unless pixel_type is half|float and compression is
-/// zip|piz|dwaa|none. write_exr calls it; the driver may call it before rendering.
+/// zip|piz|dwaa|none. write_exr and validate_outputs (output_plan.h) call it.
 void validate_exr_options(const ExrOptions& options);
 
 /// Provenance recorded in the file header, as (name, value) pairs ("prism:version", ...).
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
-/// Writes `image` (working-space beauty R, G, B plus AOV channels) as a scene-linear EXR in the
-/// pipeline's output space, with chromaticities, oiio:ColorSpace and `metadata`. Writes to a
-/// temporary file in the same folder and renames it on success, so a failure leaves any
-/// previous file untouched and no partial file. Throws Error(kOutput) naming the path.
-///
-/// Layout: R, G, B, A (A = 1 unless the image has an "A" channel), then every other channel
-/// under its own name (albedo.R, N.X, Z, sampleCount.Y, variance.R, ...). Colour layers (see
-/// is_color_layer) are converted to the output space like the beauty; data layers are written
-/// as they are. With half pixels, Z/depth/P/position/sampleCount/id layers stay float (half
-/// cannot hold depths or counts above 2048 exactly) and values of half channels beyond the
-/// half range are clamped to +-65504, counted in the attribute "prism:halfClampedValues".
-/// Added attributes: prism:colorSpace (output space; OpenImageIO does not store
-/// oiio:ColorSpace in EXR headers), prism:workingSpace, prism:ocioConfig,
-/// prism:ocioConfigHash (sha1 of the config file), prism:ocioConfigSource (its path or
-/// "bundled"), prism:display, prism:view, prism:look. A NaN or Inf in the image is an internal
-/// error (Error(kInternal)): the film drops them, so one here is a bug, and nothing is written.
+/// Writes `image` (working-space beauty R, G, B plus AOVs) as a scene-linear EXR in the
+/// pipeline's output space, encoded as `options` says, with `metadata` and the colour
+/// attributes; channel layout, half/float rules and attributes: docs/OUTPUT.md ("EXR output").
+/// Atomic: a failure leaves any previous file untouched and no partial file. Throws
+/// Error(kUsage) for bad `options`, Error(kOutput) naming the path when it cannot be written,
+/// and Error(kInternal), writing nothing, for a NaN or Inf in the image.
 void write_exr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata,
                const ColorPipeline& pipeline, const ExrOptions& options = {});
 
 /// Writes the beauty channels of `image` as a display-referred 8-bit file (PNG, JPEG or TIFF by
-/// extension) through the pipeline's display/view/look/exposure. Same atomicity and errors as
-/// write_exr; an unknown extension is Error(kUsage).
+/// extension, see plan_image_file) through the pipeline's display/view/look/exposure. Same
+/// atomicity and errors as write_exr; an extension that is not a display image's is
+/// Error(kUsage).
 void write_display_image(const std::filesystem::path& path, const Image& image,
                          const ImageMetadata& metadata, const ColorPipeline& pipeline);
 
 /// Whether `path`'s extension is one write_display_image understands (.png, .jpg, .jpeg, .tif,
-/// .tiff); .exr is for write_exr.
+/// .tiff, any case); .exr is for write_exr.
 bool is_display_image_path(const std::filesystem::path& path);
 
-/// Throws Error(kOutput) naming the folder when `path` cannot be created there (missing folder,
-/// no permission). Called before rendering so a long render does not fail at the end.
+/// Throws Error(kOutput) naming the path when a file cannot be created there (no file name,
+/// missing folder, not a folder, the path is a folder, no permission), found by creating and
+/// removing a hidden probe file. validate_outputs calls it for every planned file before
+/// rendering, so a long render does not fail at the end.
 void check_output_writable(const std::filesystem::path& path);
 
 /// An image file read back through OpenImageIO.

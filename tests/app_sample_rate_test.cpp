@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "color/image_output.h"
-#include "core/app/sample_rate_image.h"
+#include "color/sample_rate_image.h"
 #include "scenes/scene_loader.h"
 #include "tests/support/test_support.h"
 

@@ -12,6 +12,7 @@
 
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
+#include "color/output_plan.h"
 #include "core/app/commands.h"
 #include "core/error.h"
 #include "core/strings.h"
@@ -90,7 +91,9 @@ ImageMetadata carried_metadata(const ImageFileContents& contents, const std::str
 
 int run_convert_command(const ConvertOptions& options) {
   // Checks that need no file first: the output type, then every colour name.
-  if (!is_display_image_path(options.output)) {
+  const OutputPlan outputs{
+      .files = {plan_image_file(options.output, "output")}, .color = options.color, .exr = {}};
+  if (outputs.files.front().kind != OutputKind::kDisplayImage) {
     throw Error(ErrorKind::kUsage,
                 "unsupported output type '" + fs::path(options.output).extension().string() +
                     "' for '" + options.output +
@@ -119,9 +122,8 @@ int run_convert_command(const ConvertOptions& options) {
     throw Error(e.kind(), e.message(), ErrorLocation{options.input, 0, space_source});
   }
 
-  check_output_writable(options.output);
-  write_display_image(options.output, image, carried_metadata(contents, options.input, input_space),
-                      pipeline);
+  validate_outputs(outputs);
+  write_outputs(outputs, image, carried_metadata(contents, options.input, input_space), pipeline);
   std::printf("%s\n", fmt::format("{} ({}) -> {} through '{}' / '{}'{}", options.input, input_space,
                                   options.output, pipeline.display(), pipeline.view(),
                                   pipeline.look().empty() ? "" : " look '" + pipeline.look() + "'")

@@ -9,11 +9,11 @@
 #include "accel/accelerator.h"
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
+#include "color/output_plan.h"
 #include "core/app/commands.h"
 #include "core/app/component_params.h"
 #include "core/app/environment_map.h"
 #include "core/app/provenance.h"
-#include "core/app/sample_rate_image.h"
 #include "core/film.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -37,47 +37,19 @@ Camera render_camera(const Scene& scene, const RenderOptions& options,
   return camera;
 }
 
-void write_outputs(const std::vector<OutputFile>& outputs, const Image& image,
-                   const ImageMetadata& metadata, const ColorPipeline& pipeline,
-                   const ExrOptions& exr_options) {
-  for (const auto& output : outputs) {
-    if (output.exr) {
-      write_exr(output.path, image, metadata, pipeline, exr_options);
-    } else {
-      write_display_image(output.path, image, metadata, pipeline);
-    }
-  }
-}
-
+/// The line printed after the render; it lists the image files, not the sample-rate picture.
 std::string summary_line(const std::filesystem::path& scene, const RenderSettings& settings,
-                         const RenderRecord& record) {
+                         const OutputPlan& outputs, const RenderRecord& record) {
   const double per_second = samples_per_second(settings, record);
   std::vector<std::string> files;
-  for (const auto& o : settings.outputs) files.push_back(o.path.string());
+  for (const auto& file : outputs.files) {
+    if (file.kind != OutputKind::kSampleRate) files.push_back(file.path.string());
+  }
   return fmt::format(
       "{}: {} build {:.4g} ms, {} render {}x{} at {} spp {:.4g} ms ({:.3g} Msamples/s) -> {}",
       scene.filename().string(), settings.accelerator, record.build_ms, settings.integrator,
       settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6,
       join(files));
-}
-
-/// Where the adaptive sampler's "sample rate" picture goes: <first output>_rate.png.
-std::filesystem::path sample_rate_path(const RenderSettings& settings) {
-  std::filesystem::path path = settings.outputs.front().path;
-  return path.replace_filename(path.stem().string() + "_rate.png");
-}
-
-/// Writes the homework's colour-mapped sample-rate PNG of an adaptive render. Its colours are
-/// already display values, so they go through the display's Raw view.
-void write_sample_rate_image(const std::filesystem::path& path, const Image& image,
-                             const ImageMetadata& metadata, const ColorOptions& color) {
-  const std::optional<Image> rate = make_sample_rate_image(image);
-  if (!rate) return;
-  ColorOptions raw = color;
-  raw.view = "Raw";
-  raw.look.clear();
-  raw.exposure = 0.0f;
-  write_display_image(path, *rate, metadata, ColorPipeline(raw));
 }
 
 /// Camera samples the film received (the adaptive sampler stops pixels early).
@@ -100,6 +72,9 @@ double total_camera_samples(const Image& image, const RenderSettings& settings) 
 int run_render_command(const RenderOptions& options) {
   // Every check that needs no file comes first, so that a typo costs nothing.
   validate_render_options(options);
+  // Every file to write, checked (extensions, EXR encoding, writable folders) before the work.
+  const OutputPlan outputs = resolve_output_plan(options);
+  validate_outputs(outputs);
   ParamSet params = parse_param_assignments(options.set);
   ThreadLimit thread_limit(options.threads);
   const std::unique_ptr<Accelerator> accel =
@@ -119,11 +94,6 @@ int run_render_command(const RenderOptions& options) {
       std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
     }
   }
-
-  // Fail on an unwritable output now rather than after a long render.
-  for (const auto& output : settings.outputs) check_output_writable(output.path);
-  const bool adaptive = settings.adaptive_batch > 0;
-  if (adaptive) check_output_writable(sample_rate_path(settings));
 
   // Every component exists before the (possibly long) build, so mistyped names and --set keys
   // fail fast.
@@ -174,9 +144,8 @@ int run_render_command(const RenderOptions& options) {
   const Image image = film.resolve();
   record.camera_samples = total_camera_samples(image, settings);
   const ImageMetadata metadata = make_provenance(settings, params, record);
-  write_outputs(settings.outputs, image, metadata, pipeline, options.exr_options);
-  if (adaptive) write_sample_rate_image(sample_rate_path(settings), image, metadata, options.color);
-  std::printf("%s\n", summary_line(scene_path, settings, record).c_str());
+  write_outputs(outputs, image, metadata, pipeline);
+  std::printf("%s\n", summary_line(scene_path, settings, outputs, record).c_str());
   return kExitSuccess;
 }
 

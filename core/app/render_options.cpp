@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "core/strings.h"
 #include "scenes/scene_loader.h"
 
 namespace prism {
@@ -41,8 +40,6 @@ void check_resolution(long long width, long long height, const std::string& opti
   if (!scene_location.file.empty()) throw Error(ErrorKind::kInput, problem, scene_location);
   bad_option(option, problem);
 }
-
-bool is_exr_path(const std::filesystem::path& path) { return lower_case_extension(path) == ".exr"; }
 
 uint64_t parse_seed(const std::string& text) {
   uint64_t seed = 0;
@@ -102,14 +99,6 @@ void validate_render_options(const RenderOptions& options) {
   if (!std::isfinite(options.color.exposure)) {
     bad_option("--exposure", "must be a finite number of stops");
   }
-  validate_exr_options(options.exr_options);
-  if (!options.output.empty() && !is_exr_path(options.output) &&
-      !is_display_image_path(options.output)) {
-    bad_option("--output (-f)", "unsupported extension '" +
-                                    std::filesystem::path(options.output).extension().string() +
-                                    "' in '" + options.output +
-                                    "'; use .exr, .png, .jpg, .jpeg, .tif or .tiff");
-  }
   if (!options.camera_file.empty()) {
     bad_option("--camera-file (-c)", "camera settings files are not supported yet");
   }
@@ -147,23 +136,29 @@ RenderSettings resolve_render_settings(const RenderOptions& options, const Scene
     s.adaptive_tolerance = static_cast<float>(options.adaptive->second);
   }
   s.hemisphere_sampling = options.hemisphere_sampling;
-  s.outputs = plan_outputs(options, render_scene_path(options));
   return s;
 }
 
-std::vector<OutputFile> plan_outputs(const RenderOptions& options,
-                                     const std::filesystem::path& scene_path) {
-  const std::filesystem::path primary =
-      options.output.empty() ? std::filesystem::path(scene_path.stem().string() + ".exr")
-                             : std::filesystem::path(options.output);
-  std::vector<OutputFile> outputs{{primary, is_exr_path(primary)}};
-  if (options.exr && !outputs.front().exr) {
-    outputs.push_back({std::filesystem::path(primary).replace_extension(".exr"), true});
+OutputPlan resolve_output_plan(const RenderOptions& options) {
+  namespace fs = std::filesystem;
+  const fs::path primary = options.output.empty()
+                               ? fs::path(render_scene_path(options).stem().string() + ".exr")
+                               : fs::path(options.output);
+  OutputPlan plan{.files = {}, .color = options.color, .exr = options.exr_options};
+  plan.files.push_back(plan_image_file(primary, "--output (-f)"));
+  const PlannedOutput output = plan.files.front();
+  if (options.exr && output.kind != OutputKind::kSceneLinearExr) {
+    plan.files.push_back(plan_image_file(fs::path(primary).replace_extension(".exr"), "--exr"));
   }
-  if (options.png && lower_case_extension(primary) != ".png") {
-    outputs.push_back({std::filesystem::path(primary).replace_extension(".png"), false});
+  if (options.png && output.format != "png") {
+    plan.files.push_back(plan_image_file(fs::path(primary).replace_extension(".png"), "--png"));
   }
-  return outputs;
+  if (options.adaptive) {
+    plan.files.push_back(plan_sample_rate_file(
+        fs::path(primary).replace_filename(primary.stem().string() + "_rate.png"),
+        "--adaptive (-a)"));
+  }
+  return plan;
 }
 
 ParamSet parse_param_assignments(const std::vector<std::string>& assignments) {

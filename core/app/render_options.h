@@ -9,6 +9,7 @@
 
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
+#include "color/output_plan.h"
 #include "core/param_set.h"
 #include "core/scene.h"
 
@@ -68,12 +69,6 @@ struct RenderOptions {
   std::string command_line;  ///< for provenance metadata
 };
 
-/// One file the render writes.
-struct OutputFile {
-  std::filesystem::path path;
-  bool exr = false;  ///< scene-linear EXR; otherwise a display-referred 8-bit image
-};
-
 /// Every setting of one render after flags, scene settings and defaults have been merged and
 /// checked.
 struct RenderSettings {
@@ -89,12 +84,12 @@ struct RenderSettings {
   int adaptive_batch = 0;  ///< 0: adaptive sampling off
   float adaptive_tolerance = 0.05f;
   bool hemisphere_sampling = false;
-  std::vector<OutputFile> outputs;  ///< at least one
 };
 
-/// Checks every option value that does not depend on the scene: ranges, finite numbers, EXR
-/// encoding names, output extension, features not supported yet (--set is checked by
-/// parse_param_assignments()). Throws Error(kUsage) naming the option. Call before any work.
+/// Checks every option value that does not depend on the scene: ranges, finite numbers, features
+/// not supported yet (--set is checked by parse_param_assignments(), the output files by
+/// validate_outputs() on resolve_output_plan()). Throws Error(kUsage) naming the option. Call
+/// before any work.
 void validate_render_options(const RenderOptions& options);
 
 /// Throws Error(kUsage) naming --threads unless 0 <= threads <= kMaxThreads.
@@ -107,10 +102,11 @@ std::filesystem::path render_scene_path(const RenderOptions& options);
 /// Error(kInput) naming the scene file when one of its settings is out of range.
 RenderSettings resolve_render_settings(const RenderOptions& options, const Scene& scene);
 
-/// The files to write: the output path (default "<scene stem>.exr" in the current folder), plus a
-/// PNG beside an EXR with --png, plus an EXR beside a display image with --exr.
-std::vector<OutputFile> plan_outputs(const RenderOptions& options,
-                                     const std::filesystem::path& scene_path);
+/// The files the render writes, in this order: the output path (default "<scene stem>.exr" in the
+/// current folder; kind by extension), with --exr the same path as .exr unless it is an EXR,
+/// with --png as .png unless it is a PNG, and with --adaptive "<output stem>_rate.png" beside it;
+/// plus the colour options and EXR encoding. Judges nothing: validate_outputs() does.
+OutputPlan resolve_output_plan(const RenderOptions& options);
 
 /// The --set assignments as a ParamSet; throws Error(kUsage) on a malformed one.
 ParamSet parse_param_assignments(const std::vector<std::string>& assignments);

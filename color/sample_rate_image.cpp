@@ -1,4 +1,4 @@
-#include "core/app/sample_rate_image.h"
+#include "color/sample_rate_image.h"
 
 #include <algorithm>
 

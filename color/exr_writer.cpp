@@ -1,0 +1,138 @@
+// The scene-linear EXR writer. The layout and attributes are described in docs/OUTPUT.md
+// ("EXR output").
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+#include "color/image_writers.h"
+#include "core/strings.h"
+
+namespace prism {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr float kHalfMax = 65504.0f;
+
+bool is_valid_pixel_type(const std::string& type) { return type == "half" || type == "float"; }
+
+bool is_valid_compression(const std::string& compression) {
+  return compression == "zip" || compression == "piz" || compression == "dwaa" ||
+         compression == "none";
+}
+
+std::string layer_of(const std::string& channel) {
+  const auto dot = channel.rfind('.');
+  return dot == std::string::npos ? channel : channel.substr(0, dot);
+}
+
+// Layers whose values half precision would damage (depths, positions, counts and ids above 2048).
+bool needs_float(const std::string& channel) {
+  constexpr const char* kLayers[] = {"z",           "depth", "p",        "position",
+                                     "samplecount", "id",    "objectid", "materialid"};
+  const std::string layer = to_lower(layer_of(channel));
+  return std::any_of(std::begin(kLayers), std::end(kLayers),
+                     [&](const char* l) { return layer == l; });
+}
+
+}  // namespace
+
+void validate_exr_options(const ExrOptions& options) {
+  if (!is_valid_pixel_type(options.pixel_type)) {
+    throw Error(ErrorKind::kUsage,
+                "unknown EXR pixel type '" + options.pixel_type + "'; available: half, float");
+  }
+  if (!is_valid_compression(options.compression)) {
+    throw Error(ErrorKind::kUsage, "unknown EXR compression '" + options.compression +
+                                       "'; available: zip, piz, dwaa, none");
+  }
+}
+
+void write_exr(const fs::path& path, const Image& image, const ImageMetadata& metadata,
+               const ColorPipeline& pipeline, const ExrOptions& options) {
+  validate_exr_options(options);
+  PRISM_CHECK(image.width > 0 && image.height > 0);
+  check_output_writable(path);
+  color_detail::write_exr_file(path, image, metadata, pipeline, options);
+}
+
+namespace color_detail {
+
+void write_exr_file(const fs::path& path, const Image& image, const ImageMetadata& metadata,
+                    const ColorPipeline& pipeline, const ExrOptions& options) {
+  PRISM_CHECK(is_valid_pixel_type(options.pixel_type) && is_valid_compression(options.compression));
+  PRISM_CHECK(image.width > 0 && image.height > 0);
+  PRISM_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels());
+
+  Image converted = image;
+  pipeline.working_to_output(converted);
+
+  // Beauty RGBA first, as compositors expect, then every AOV in the image's order.
+  const auto find = [&](const std::string& name) {
+    const auto it = std::find(image.channel_names.begin(), image.channel_names.end(), name);
+    return it == image.channel_names.end() ? -1 : int(it - image.channel_names.begin());
+  };
+  std::vector<int> source = {find("R"), find("G"), find("B"), find("A")};
+  PRISM_CHECK(source[0] >= 0 && source[1] >= 0 && source[2] >= 0);
+  std::vector<std::string> names = {"R", "G", "B", "A"};
+  for (int c = 0; c < image.channels(); ++c) {
+    const std::string& name = image.channel_names[c];
+    if (name == "R" || name == "G" || name == "B" || name == "A") continue;
+    PRISM_CHECK(std::find(names.begin(), names.end(), name) == names.end());
+    names.push_back(name);
+    source.push_back(c);
+  }
+  const int channels = int(names.size());
+  const size_t count = size_t(image.width) * image.height;
+  std::vector<float> pixels(count * channels);
+  for (size_t i = 0; i < count; ++i) {
+    for (int c = 0; c < channels; ++c) {
+      pixels[i * channels + c] =
+          source[c] < 0 ? 1.0f : converted.pixels[i * converted.channels() + source[c]];
+    }
+  }
+  check_finite(pixels, path);
+
+  const OIIO::TypeDesc type =
+      options.pixel_type == "float" ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
+  OIIO::ImageSpec spec(image.width, image.height, channels, type);
+  spec.channelnames = names;
+  spec.alpha_channel = 3;
+  if (const auto z = std::find(names.begin(), names.end(), "Z"); z != names.end()) {
+    spec.z_channel = int(z - names.begin());
+  }
+  size_t clamped = 0;
+  if (type == OIIO::TypeDesc::HALF) {
+    spec.channelformats.assign(channels, OIIO::TypeDesc::HALF);
+    for (int c = 0; c < channels; ++c) {
+      if (needs_float(names[c])) {
+        spec.channelformats[c] = OIIO::TypeDesc::FLOAT;
+        continue;
+      }
+      // Beyond the half range a value would become Inf in the file.
+      for (size_t i = 0; i < count; ++i) {
+        float& v = pixels[i * channels + c];
+        if (std::abs(v) > kHalfMax) {
+          v = std::copysign(kHalfMax, v);
+          ++clamped;
+        }
+      }
+    }
+  }
+
+  add_header_attributes(spec, metadata, pipeline);
+  spec.attribute("prism:colorSpace", pipeline.output_space());
+  spec.attribute("oiio:ColorSpace", pipeline.output_space());
+  if (const auto chroma = pipeline.output_chromaticities()) {
+    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chroma->data());
+  }
+  if (clamped > 0) {
+    spec.attribute("prism:halfClampedValues", int(std::min<size_t>(clamped, INT_MAX)));
+  }
+  spec.attribute("compression", options.compression);
+  write_atomically(path, "openexr", spec, OIIO::TypeDesc::FLOAT, pixels.data());
+}
+
+}  // namespace color_detail
+}  // namespace prism

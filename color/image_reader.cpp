@@ -1,0 +1,61 @@
+// Reading image files back through OpenImageIO (tests, comparisons, `prism convert`, environment
+// maps).
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "color/image_output.h"
+#include "core/error.h"
+
+namespace prism {
+
+std::string ImageFileContents::attribute(const std::string& name) const {
+  for (const auto& [key, value] : attributes) {
+    if (key == name) return value;
+  }
+  return {};
+}
+
+int ImageFileContents::channel(const std::string& name) const {
+  const auto& names = image.channel_names;
+  const auto it = std::find(names.begin(), names.end(), name);
+  return it == names.end() ? -1 : int(it - names.begin());
+}
+
+ImageFileContents read_image_file(const std::filesystem::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) {
+    throw Error(ErrorKind::kInput, "cannot read the image: " + OIIO::geterror(),
+                ErrorLocation{path.string(), 0, {}});
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  ImageFileContents contents;
+  contents.format = in->format_name();
+  contents.image.width = spec.width;
+  contents.image.height = spec.height;
+  contents.image.channel_names = spec.channelnames;
+  contents.image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
+                      contents.image.pixels.data())) {
+    throw Error(ErrorKind::kInput, "cannot read the pixels: " + in->geterror(),
+                ErrorLocation{path.string(), 0, {}});
+  }
+  for (int c = 0; c < spec.nchannels; ++c) {
+    contents.channel_formats.push_back(spec.channelformat(c).c_str());
+  }
+  contents.compression = spec.get_string_attribute("compression");
+  if (const auto* chroma =
+          spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8))) {
+    std::array<float, 8> values{};
+    std::memcpy(values.data(), chroma->data(), sizeof(values));
+    contents.chromaticities = values;
+  }
+  for (const auto& p : spec.extra_attribs) {
+    contents.attributes.emplace_back(p.name().string(), p.get_string());
+  }
+  return contents;
+}
+
+}  // namespace prism

@@ -1,0 +1,50 @@
+#pragma once
+
+// What the image writers of color/ share (internal to color/): the atomic write, the checks and
+// the header attributes every file carries, and the writers that output plans call once the
+// plan is validated. Other code uses image_output.h and output_plan.h.
+
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "color/color_pipeline.h"
+#include "color/image_output.h"
+#include "core/error.h"
+#include "core/image.h"
+
+namespace prism::color_detail {
+
+/// Error(kOutput) with `message`, located at `path`.
+Error output_error(const std::filesystem::path& path, const std::string& message);
+
+/// Writes interleaved `pixels` of `type` with OpenImageIO's writer for `format` to a hidden
+/// temporary file beside `target`, flushes it to disk and renames it over `target`, so a failure
+/// leaves any previous file untouched and no partial file. Throws Error(kOutput) naming `target`.
+void write_atomically(const std::filesystem::path& target, const std::string& format,
+                      const OIIO::ImageSpec& spec, const OIIO::TypeDesc& type, const void* pixels);
+
+/// Throws Error(kInternal) naming `path` when `values` holds a NaN or Inf: the film drops them,
+/// so one here is a bug to report, not a value to patch.
+void check_finite(const std::vector<float>& values, const std::filesystem::path& path);
+
+/// Adds `metadata` (provenance) and the pipeline's config, working space, display, view and look
+/// (prism:ocioConfig, ...) to the header.
+void add_header_attributes(OIIO::ImageSpec& spec, const ImageMetadata& metadata,
+                           const ColorPipeline& pipeline);
+
+/// write_exr without its checks: `options` is valid and the path was checked writable (an
+/// output plan validated both).
+void write_exr_file(const std::filesystem::path& path, const Image& image,
+                    const ImageMetadata& metadata, const ColorPipeline& pipeline,
+                    const ExrOptions& options);
+
+/// write_display_image without its checks: `format` ("png", "jpeg" or "tiff") comes from the
+/// output plan, whose validation checked the path writable.
+void write_display_file(const std::filesystem::path& path, const std::string& format,
+                        const Image& image, const ImageMetadata& metadata,
+                        const ColorPipeline& pipeline);
+
+}  // namespace prism::color_detail
