@@ -16,7 +16,7 @@ namespace prism {
 
 /// Everything an integrator reads while rendering. All references outlive render().
 struct RenderContext {
-  const Scene& scene;
+  const Scene& scene;  ///< with its environment map, if any
   const Accelerator& accel;
   const Camera& camera;  ///< already fitted to the film's aspect ratio
   const Sampler& sampler_prototype;
@@ -27,9 +27,6 @@ struct RenderContext {
   int adaptive_batch = 0;                ///< adaptive sampling batch size, 0 = off (-a B tol)
   float adaptive_tolerance = 0.05f;      ///< adaptive sampling tolerance (-a B tol)
   ProgressReporter* progress = nullptr;  ///< may be null; advanced as progress_total() says
-  /// Environment map (-e): latitude-longitude radiance with channels R, G, B in the working
-  /// space, row 0 at the pole in the direction of camera.up; null for none. Read by color/.
-  const Image* environment = nullptr;
 };
 
 /// Produces an image of a scene. Implementations are chosen by name from integrator_registry().

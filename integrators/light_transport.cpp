@@ -14,8 +14,7 @@ constexpr float kShadowEpsilon = 1e-4f;
 }  // namespace
 
 ShadingContext::ShadingContext(const RenderContext& context, const BsdfOptions& options)
-    : bsdfs(make_bsdfs(context.scene.materials, options)),
-      lights(context.scene, context.environment, context.camera.up) {}
+    : bsdfs(make_bsdfs(context.scene.materials, options)), lights(context.scene) {}
 
 ShadingPoint::ShadingPoint(const SurfaceInteraction& si_in, const Ray& ray, const Bsdf& bsdf_in)
     : si(si_in),

@@ -111,13 +111,17 @@ int run_render_command(const RenderOptions& options) {
 
   const ColorPipeline pipeline(options.color);
   pipeline.convert_scene_to_working(scene, pipeline.scene_file_space());
-  // The environment map is input like the scene: read and checked before any long work.
-  std::optional<EnvironmentMap> environment;
+  // The environment map is input like the scene: read and checked before any long work. Its
+  // row 0 is the pole along the camera's up.
   if (!options.environment_map.empty()) {
-    environment = load_environment_map(options.environment_map, pipeline);
-    for (const auto& warning : environment->warnings) {
+    EnvironmentMap environment = load_environment_map(options.environment_map, pipeline);
+    for (const auto& warning : environment.warnings) {
       std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
     }
+    scene.environment = SceneEnvironment{.image = std::move(environment.image),
+                                         .up = scene.camera.up,
+                                         .file = options.environment_map,
+                                         .color_space = environment.color_space};
   }
 
   // Fail on an unwritable output now rather than after a long render.
@@ -138,9 +142,9 @@ int run_render_command(const RenderOptions& options) {
   RenderRecord record;
   record.scene = scene_path.string();
   record.command_line = options.command_line;
-  if (environment) {
-    record.environment = options.environment_map;
-    record.environment_space = environment->color_space;
+  if (scene.environment) {
+    record.environment = scene.environment->file;
+    record.environment_space = scene.environment->color_space;
   }
   record.build_ms = time_ms([&] { accel->build(scene.geometry); });
 
@@ -160,7 +164,6 @@ int run_render_command(const RenderOptions& options) {
       .adaptive_batch = settings.adaptive_batch,
       .adaptive_tolerance = settings.adaptive_tolerance,
       .progress = &progress,
-      .environment = environment ? &environment->image : nullptr,
   };
   record.render_ms = time_ms([&] { integrator->render(context, film); });
   progress.done();

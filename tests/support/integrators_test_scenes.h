@@ -121,8 +121,16 @@ struct TestRender {
   uint64_t seed = 1;
   std::string sampler = "independent";
   std::string accelerator = "bvh";
-  const Image* environment = nullptr;
 };
+
+/// Gives `scene` the environment map `image`, its row 0 at the pole along the scene camera's
+/// up, as the render driver does for -e.
+inline void set_environment(Scene& scene, Image image) {
+  SceneEnvironment environment;
+  environment.image = std::move(image);
+  environment.up = scene.camera.up;
+  scene.environment = std::move(environment);
+}
 
 /// Renders `scene` with integrator `name`; fails the test if any sample was not finite.
 inline Image render_scene(const Scene& scene, const std::string& name, const ParamSet& params,
@@ -145,7 +153,6 @@ inline Image render_scene(const Scene& scene, const std::string& name, const Par
       .hemisphere_sampling = r.hemisphere,
       .adaptive_batch = r.adaptive_batch,
       .adaptive_tolerance = r.adaptive_tolerance,
-      .environment = r.environment,
   };
   integrator->render(context, film);
   EXPECT_EQ(film.non_finite_samples(), 0u) << name << " produced NaN or infinite samples";
