@@ -1,5 +1,6 @@
 #include <memory>
 
+#include "integrators/ao_integrator.h"
 #include "integrators/debug_integrators.h"
 #include "integrators/direct_integrator.h"
 #include "integrators/integrator.h"
