@@ -41,11 +41,12 @@ Rgb DirectEstimator::li(const Ray& ray, Sampler& sampler, AovSample& aovs) const
                  : shading_.lights.le_escaped(bs->wi);
     return radiance + bs->f * std::abs(glm::dot(bs->wi, si.shading_normal)) * le / bs->pdf;
   }
-  if (context_.hemisphere_sampling) {
+  if (settings_.hemisphere) {
     return radiance +
-           estimate_direct_hemisphere(sp, sampler, context_, shading_, context_.light_samples);
+           estimate_direct_hemisphere(sp, sampler, context_, shading_, settings_.light_samples);
   }
-  return radiance + estimate_direct_lights(sp, sampler, context_, shading_, context_.light_samples);
+  return radiance +
+         estimate_direct_lights(sp, sampler, context_, shading_, settings_.light_samples);
 }
 
 }  // namespace

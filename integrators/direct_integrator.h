@@ -6,10 +6,10 @@ namespace prism {
 
 /// Zero bounce plus one bounce (the homework's direct illumination): emission seen directly,
 /// plus light reflected once, estimated by light importance sampling (default; every light,
-/// RenderContext::light_samples samples per non-delta light) or by uniform hemisphere sampling
-/// (RenderContext::hemisphere_sampling). At a purely specular surface the one bounce follows
-/// the specular direction instead, so mirrors show the lights they reflect. Parameters: those
-/// of LightTransportSettings, prefix "direct.".
+/// direct.light_samples samples per non-delta light) or by uniform hemisphere sampling
+/// (direct.hemisphere). At a purely specular surface the one bounce follows the specular
+/// direction instead, so mirrors show the lights they reflect. Parameters: those of
+/// LightTransportSettings, prefix "direct.".
 class DirectIntegrator final : public PixelIntegrator {
  public:
   explicit DirectIntegrator(const ParamSet& params);

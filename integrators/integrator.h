@@ -14,16 +14,14 @@
 
 namespace prism {
 
-/// Everything an integrator reads while rendering. All references outlive render().
+/// Everything an integrator reads while rendering, besides its own parameters. All references
+/// outlive render().
 struct RenderContext {
   const Scene& scene;  ///< with its environment map, if any
   const Accelerator& accel;
   const Camera& camera;  ///< already fitted to the film's aspect ratio
   const Sampler& sampler_prototype;
   int spp = 1;                           ///< camera rays per pixel (-s)
-  int light_samples = 1;                 ///< samples per area light (-l)
-  int max_depth = 5;                     ///< maximum ray depth (-m)
-  bool hemisphere_sampling = false;      ///< direct light by uniform hemisphere sampling (-H)
   int adaptive_batch = 0;                ///< adaptive sampling batch size, 0 = off (-a B tol)
   float adaptive_tolerance = 0.05f;      ///< adaptive sampling tolerance (-a B tol)
   ProgressReporter* progress = nullptr;  ///< may be null; advanced as progress_total() says

@@ -13,7 +13,10 @@ constexpr float kShadowEpsilon = 1e-4f;
 
 }  // namespace
 
-LightTransportSettings::LightTransportSettings(const std::string& name, const ParamSet& params) {
+LightTransportSettings::LightTransportSettings(const std::string& name, const ParamSet& params)
+    : light_samples(
+          int(params.get_int(name + ".light_samples", kDefaultLightSamples, 1, kMaxLightSamples))),
+      hemisphere(params.get_bool(name + ".hemisphere", false)) {
   const std::string model = params.get_string(name + ".microfacet", "beckmann");
   if (model == "beckmann") {
     bsdf.microfacet = MicrofacetModel::kBeckmann;

@@ -8,17 +8,23 @@
 #include "integrators/bsdf/bsdf.h"
 #include "integrators/bsdf/bsdf_factory.h"
 #include "integrators/integrator.h"
+#include "integrators/integrator_defaults.h"
 #include "integrators/lights/light_set.h"
 #include "integrators/sampling/frame.h"
 
 namespace prism {
 
 /// The settings every light-transport integrator reads from its parameters (prefix `<name>.`):
-/// - microfacet: beckmann (default) or ggx.
+/// - microfacet: beckmann (default) or ggx;
+/// - light_samples (default kDefaultLightSamples, in [1, kMaxLightSamples]; -l): samples per
+///   non-delta light of the one-bounce estimators, or hemisphere rays per light;
+/// - hemisphere (default false; -H): the one-bounce estimate by uniform hemisphere sampling.
 struct LightTransportSettings {
   /// Throws Error(kUsage) naming the key on a bad value.
   LightTransportSettings(const std::string& name, const ParamSet& params);
   BsdfOptions bsdf;
+  int light_samples;
+  bool hemisphere;
 };
 
 /// Per-render shading state of the light-transport integrators: one BSDF per material and the

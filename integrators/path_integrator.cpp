@@ -9,6 +9,7 @@ namespace prism {
 
 PathIntegrator::Settings::Settings(const ParamSet& params)
     : light_transport("path", params),
+      max_depth(int(params.get_int("path.max_depth", kDefaultMaxDepth, 0, kMaxDepth))),
       mis(params.get_bool("path.mis", true)),
       accumulate(params.get_bool("path.accumulate", true)),
       russian_roulette(params.get_bool("path.rr", true)),
@@ -28,7 +29,7 @@ class PathEstimator final : public PixelEstimator {
 
  private:
   /// Light arriving at `sp` from one light chosen by power, MIS-weighted against BSDF
-  /// sampling; averaged over context.light_samples samples.
+  /// sampling; averaged over light_samples samples.
   Rgb sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const;
 
   const RenderContext& context_;
@@ -37,7 +38,7 @@ class PathEstimator final : public PixelEstimator {
 };
 
 Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const {
-  const int n = std::max(1, context_.light_samples);
+  const int n = std::max(1, settings_.light_transport.light_samples);
   Rgb sum(0.0f);
   for (int i = 0; i < n; ++i) {
     const float u_light = sampler.get_1d();
@@ -62,9 +63,9 @@ Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) c
 Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const {
   const RenderContext& context = context_;
   const ShadingContext& shading = shading_;
-  const int light_samples = context.light_samples;
+  const int light_samples = settings_.light_transport.light_samples;
   const bool accumulate = settings_.accumulate;
-  const int max_depth = std::max(0, context.max_depth);
+  const int max_depth = std::max(0, settings_.max_depth);
   const float nee_samples = float(std::max(1, light_samples));
   Rgb radiance(0.0f);
   // Adds light that scattered `bounces` times before reaching the camera.
@@ -121,7 +122,7 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
       Rgb direct;
       if (settings_.mis) {
         direct = sample_lights_mis(sp, sampler);
-      } else if (context.hemisphere_sampling) {
+      } else if (settings_.light_transport.hemisphere) {
         direct = estimate_direct_hemisphere(sp, sampler, context, shading, light_samples);
       } else {
         direct = estimate_direct_lights(sp, sampler, context, shading, light_samples);

@@ -5,24 +5,26 @@
 namespace prism {
 
 /// Unidirectional path tracing with next-event estimation. Parameters (prefix "path."):
+/// - max_depth (default kDefaultMaxDepth, in [0, kMaxDepth]; -m): the most bounces a path
+///   takes.
 /// - mis (default true): light sampling and BSDF sampling combined by multiple importance
 ///   sampling (power heuristic), lights chosen by power, light_samples NEE samples per vertex;
 ///   false reproduces the homework's estimator: at every vertex the one-bounce estimate of
-///   every light (or by hemisphere sampling with -H), emission found by BSDF-sampled rays
-///   counted only after specular bounces.
+///   every light (or by hemisphere sampling with hemisphere=true), emission found by
+///   BSDF-sampled rays counted only after specular bounces.
 /// - accumulate (default true): the sum of bounces 0..max_depth; false gives only bounce
 ///   max_depth (light that scattered exactly max_depth times).
 /// - rr (default true), rr_depth (default 3, or 1 with rr_probability), rr_probability
 ///   (default 0: continuation probability from the path throughput; in (0,1]: that fixed
 ///   continuation probability, as the homework does).
-/// - microfacet: see LightTransportSettings.
-/// light_samples, max_depth and -H come from the RenderContext.
+/// - microfacet, light_samples, hemisphere: see LightTransportSettings.
 class PathIntegrator final : public PixelIntegrator {
  public:
   /// Everything the estimator reads from the parameters.
   struct Settings {
     explicit Settings(const ParamSet& params);
     LightTransportSettings light_transport;
+    int max_depth;
     bool mis;
     bool accumulate;
     bool russian_roulette;

@@ -38,6 +38,43 @@ TEST(IntegratorsOutput, RegistryListsEveryIntegrator) {
   EXPECT_THROW(registry.create("path", bad_rr), Error);
 }
 
+TEST(IntegratorsOutput, FlagAliasesReachTheIntegratorsThatReadThem) {
+  // -m 2 for every integrator, as the driver gives it: only path reads it; nothing is unused.
+  for (const char* name : {"path", "direct", "ao", "normals", "depth"}) {
+    ParamSet params;
+    params.set_alias(std::string(name) + ".max_depth", "2", "-m 2");
+    params.set_alias(std::string(name) + ".light_samples", "4", "-l 4");
+    integrator_registry().create(name, params);
+    EXPECT_TRUE(params.unused_with_prefix(std::string(name) + ".").empty()) << name;
+    EXPECT_TRUE(params.keys().empty()) << name;
+    EXPECT_EQ(params.to_string(), "") << name;
+  }
+  // An explicit value agrees with the alias when it parses to the same value.
+  ParamSet same;
+  same.set_alias("path.max_depth", "3", "-m 3");
+  same.set("path.max_depth", "03");
+  EXPECT_NO_THROW(integrator_registry().create("path", same));
+  EXPECT_EQ(same.to_string(), "path.max_depth=03");
+  ParamSet conflict;
+  conflict.set_alias("direct.hemisphere", "true", "-H");
+  conflict.set("direct.hemisphere", "off");
+  try {
+    integrator_registry().create("direct", conflict);
+    FAIL() << "no error for -H with direct.hemisphere=off";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
+    EXPECT_NE(std::string(e.what()).find("direct.hemisphere=off"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("-H"), std::string::npos) << e.what();
+  }
+  // The parameters' ranges are the flags'.
+  ParamSet too_deep;
+  too_deep.set("path.max_depth", "1025");
+  EXPECT_THROW(integrator_registry().create("path", too_deep), Error);
+  ParamSet no_samples;
+  no_samples.set("direct.light_samples", "0");
+  EXPECT_THROW(integrator_registry().create("direct", no_samples), Error);
+}
+
 /// A unit sphere 3 units in front of the camera, nothing else.
 Scene one_sphere() {
   Scene scene;

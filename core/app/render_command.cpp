@@ -12,6 +12,7 @@
 #include "core/app/commands.h"
 #include "core/app/component_params.h"
 #include "core/app/environment_map.h"
+#include "core/app/integrator_aliases.h"
 #include "core/app/provenance.h"
 #include "core/app/sample_rate_image.h"
 #include "core/film.h"
@@ -107,7 +108,7 @@ int run_render_command(const RenderOptions& options) {
 
   const std::filesystem::path scene_path = render_scene_path(options);
   Scene scene = load_scene(scene_path, SceneLoadOptions{.literal_camera = options.literal_camera});
-  const RenderSettings settings = resolve_render_settings(options, scene);
+  RenderSettings settings = resolve_render_settings(options, scene);
 
   const ColorPipeline pipeline(options.color);
   pipeline.convert_scene_to_working(scene, pipeline.scene_file_space());
@@ -130,13 +131,15 @@ int run_render_command(const RenderOptions& options) {
   if (adaptive) check_output_writable(sample_rate_path(settings));
 
   // Every component exists before the (possibly long) build, so mistyped names and --set keys
-  // fail fast.
+  // fail fast. -l, -m, -H (and the scene's max_depth) reach the integrator as its parameters.
+  add_integrator_aliases(options, scene, settings.integrator, params);
   const std::unique_ptr<Integrator> integrator =
       integrator_registry().create(settings.integrator, params);
   const std::unique_ptr<Sampler> sampler = create_sampler(settings.sampler, settings.seed);
   sampler->set_sample_count(settings.spp);
   check_component_params(
       params, {{"accelerator", settings.accelerator}, {"integrator", settings.integrator}});
+  record_integrator_aliases(params, settings);
   const Camera camera = render_camera(scene, options, settings);
 
   RenderRecord record;
@@ -158,9 +161,6 @@ int run_render_command(const RenderOptions& options) {
       .camera = camera,
       .sampler_prototype = *sampler,
       .spp = settings.spp,
-      .light_samples = settings.light_samples,
-      .max_depth = settings.max_depth,
-      .hemisphere_sampling = settings.hemisphere_sampling,
       .adaptive_batch = settings.adaptive_batch,
       .adaptive_tolerance = settings.adaptive_tolerance,
       .progress = &progress,

@@ -146,7 +146,6 @@ RenderSettings resolve_render_settings(const RenderOptions& options, const Scene
     s.adaptive_batch = options.adaptive->first;
     s.adaptive_tolerance = static_cast<float>(options.adaptive->second);
   }
-  s.hemisphere_sampling = options.hemisphere_sampling;
   s.outputs = plan_outputs(options, render_scene_path(options));
   return s;
 }

@@ -113,6 +113,8 @@ inline Scene cornell_box(const CornellOptions& o = {}) {
 struct TestRender {
   int width = 24, height = 24;
   int spp = 16;
+  /// Given to the integrator as the flags -l, -m, -H give them: aliases of `<name>.light_samples`,
+  /// `<name>.max_depth` and `<name>.hemisphere`, read by the integrators that have them.
   int light_samples = 1;
   int max_depth = 5;
   bool hemisphere = false;
@@ -137,7 +139,12 @@ inline Image render_scene(const Scene& scene, const std::string& name, const Par
                           const TestRender& r) {
   const std::unique_ptr<Accelerator> accel = accelerator_registry().create(r.accelerator, params);
   accel->build(scene.geometry);
-  const std::unique_ptr<Integrator> integrator = integrator_registry().create(name, params);
+  ParamSet integrator_params = params;
+  integrator_params.set_alias(name + ".light_samples", std::to_string(r.light_samples), "-l");
+  integrator_params.set_alias(name + ".max_depth", std::to_string(r.max_depth), "-m");
+  if (r.hemisphere) integrator_params.set_alias(name + ".hemisphere", "true", "-H");
+  const std::unique_ptr<Integrator> integrator =
+      integrator_registry().create(name, integrator_params);
   const std::unique_ptr<Sampler> sampler = create_sampler(r.sampler, r.seed);
   Camera camera = scene.camera;
   camera.fit_to_aspect(float(r.width) / float(r.height));
@@ -148,9 +155,6 @@ inline Image render_scene(const Scene& scene, const std::string& name, const Par
       .camera = camera,
       .sampler_prototype = *sampler,
       .spp = r.spp,
-      .light_samples = r.light_samples,
-      .max_depth = r.max_depth,
-      .hemisphere_sampling = r.hemisphere,
       .adaptive_batch = r.adaptive_batch,
       .adaptive_tolerance = r.adaptive_tolerance,
   };
