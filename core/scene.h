@@ -6,6 +6,7 @@
 
 #include "core/camera.h"
 #include "core/hit.h"
+#include "core/image.h"
 #include "core/light.h"
 #include "core/material.h"
 #include "core/ray.h"
@@ -34,6 +35,16 @@ struct SurfaceInteraction {
   uint32_t prim_id = 0;
 };
 
+/// An environment map surrounding the scene at infinity (-e). Plain data; the lights read it.
+struct SceneEnvironment {
+  /// Radiance in latitude-longitude layout: channels R, G, B in the working space, columns
+  /// spanning 360 degrees, rows 180 from the pole along `up` (row 0) to the opposite one.
+  Image image;
+  Vec3 up{0.0f, 1.0f, 0.0f};  ///< the pole of row 0: the scene camera's up when it was added
+  std::string file;           ///< the file it was read from, as given (provenance)
+  std::string color_space;    ///< the colour space the file's values were read as (provenance)
+};
+
 /// A loaded scene: plain data, independent of any accelerator.
 struct Scene {
   std::string source;  ///< file it came from, or a description for built-in scenes
@@ -42,6 +53,8 @@ struct Scene {
   std::vector<Light> lights;
   Camera camera;
   SceneRenderSettings settings;
+  /// Set by the render driver from -e (scene files do not name one); none: no environment.
+  std::optional<SceneEnvironment> environment;
 
   /// The surface at `hit` of `ray` (hit must come from an accelerator built on this geometry).
   SurfaceInteraction surface_at(const Ray& ray, const Hit& hit) const;

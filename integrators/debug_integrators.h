@@ -11,7 +11,7 @@ class NormalsIntegrator final : public PixelIntegrator {
   std::string_view name() const override { return "normals"; }
 
  protected:
-  Rgb li(const Ray& ray, Sampler& sampler, const RenderContext& context) const override;
+  std::unique_ptr<PixelEstimator> prepare(const RenderContext& context) const override;
 };
 
 /// Distance from the ray origin to the first hit, in scene units, as grey; 0 where the ray
@@ -21,7 +21,7 @@ class DepthIntegrator final : public PixelIntegrator {
   std::string_view name() const override { return "depth"; }
 
  protected:
-  Rgb li(const Ray& ray, Sampler& sampler, const RenderContext& context) const override;
+  std::unique_ptr<PixelEstimator> prepare(const RenderContext& context) const override;
 };
 
 }  // namespace prism

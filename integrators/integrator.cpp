@@ -21,33 +21,19 @@ uint64_t PixelIntegrator::progress_total(int width, int height, int spp) const {
   return uint64_t(width) * uint64_t(height);
 }
 
-AovSample first_hit_aovs(const Ray& ray, const RenderContext& context) {
+AovSample hit_aovs(const Scene& scene, const Ray& ray, const Hit& hit,
+                   const SurfaceInteraction& si) {
   AovSample aovs;
-  const std::optional<Hit> hit = context.accel.intersect(ray);
-  if (!hit) return aovs;
-  const SurfaceInteraction si = context.scene.surface_at(ray, *hit);
   aovs.normal = si.shading_normal;
-  aovs.depth = hit->t * glm::length(ray.direction);
-  if (si.material_id < context.scene.materials.size()) {
-    aovs.albedo = material_albedo(context.scene.materials[si.material_id]);
+  aovs.depth = hit.t * glm::length(ray.direction);
+  if (si.material_id < scene.materials.size()) {
+    aovs.albedo = material_albedo(scene.materials[si.material_id]);
   }
   return aovs;
 }
 
-Rgb PixelIntegrator::li_aov(const Ray& ray, Sampler& sampler, const RenderContext& context,
-                            AovSample& aovs) const {
-  aovs = first_hit_aovs(ray, context);
-  return li(ray, sampler, context);
-}
-
 void PixelIntegrator::render(const RenderContext& context, Film& film) const {
-  // end_render() on every way out, exceptions included.
-  struct EndRender {
-    const PixelIntegrator* self;
-    ~EndRender() { self->end_render(); }
-  };
-  begin_render(context);
-  const EndRender end_render_guard{this};
+  const std::unique_ptr<const PixelEstimator> estimator = prepare(context);
   const glm::vec2 film_size(film.width(), film.height());
   const int spp = std::max(1, context.spp);
   const int batch = context.adaptive_batch;
@@ -69,7 +55,7 @@ void PixelIntegrator::render(const RenderContext& context, Film& film) const {
           const Vec2 lens = sampler->get_2d();
           const Ray ray = context.camera.generate_ray(film_position, lens);
           AovSample aovs;
-          const Rgb radiance = li_aov(ray, *sampler, context, aovs);
+          const Rgb radiance = estimator->li(ray, *sampler, aovs);
           film.add_sample(pixel, radiance, aovs);
           if (batch <= 0) continue;
           const double illuminance = is_finite(radiance) ? double(luminance(radiance)) : 0.0;

@@ -14,25 +14,22 @@
 
 namespace prism {
 
-/// Everything an integrator reads while rendering. All references outlive render().
+/// Everything an integrator reads while rendering, besides its own parameters. All references
+/// outlive render().
 struct RenderContext {
-  const Scene& scene;
+  const Scene& scene;  ///< with its environment map, if any
   const Accelerator& accel;
   const Camera& camera;  ///< already fitted to the film's aspect ratio
   const Sampler& sampler_prototype;
   int spp = 1;                           ///< camera rays per pixel (-s)
-  int light_samples = 1;                 ///< samples per area light (-l)
-  int max_depth = 5;                     ///< maximum ray depth (-m)
-  bool hemisphere_sampling = false;      ///< direct light by uniform hemisphere sampling (-H)
   int adaptive_batch = 0;                ///< adaptive sampling batch size, 0 = off (-a B tol)
   float adaptive_tolerance = 0.05f;      ///< adaptive sampling tolerance (-a B tol)
   ProgressReporter* progress = nullptr;  ///< may be null; advanced as progress_total() says
-  /// Environment map (-e): latitude-longitude radiance with channels R, G, B in the working
-  /// space, row 0 at the pole in the direction of camera.up; null for none. Read by color/.
-  const Image* environment = nullptr;
 };
 
-/// Produces an image of a scene. Implementations are chosen by name from integrator_registry().
+/// Produces an image of a scene. Implementations are chosen by name from integrator_registry()
+/// and hold only the settings read from their parameters: every call of render() builds its
+/// own per-render state, so render() of one instance may run concurrently with itself.
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -44,32 +41,38 @@ class Integrator {
   virtual uint64_t progress_total(int width, int height, int spp) const;
 };
 
+/// The per-render state of a PixelIntegrator (lights, BSDFs, distances derived from the scene)
+/// and the radiance estimate that reads it. Built once per render() by
+/// PixelIntegrator::prepare(), read-only while the tiles render: li() is called concurrently
+/// from many threads.
+class PixelEstimator {
+ public:
+  virtual ~PixelEstimator() = default;
+  /// Radiance arriving along the camera ray `ray`; sets `aovs` (given default-initialised) to
+  /// the AOVs of the ray's first hit, left as they are where the ray escapes.
+  virtual Rgb li(const Ray& ray, Sampler& sampler, AovSample& aovs) const = 0;
+};
+
 /// Integrators that estimate radiance independently per camera ray: the parallel tile loop,
-/// per-thread sampler clones and the camera-ray generation live here; subclasses implement li().
+/// per-thread sampler clones and the camera-ray generation live here; subclasses build the
+/// PixelEstimator whose li() is called once per camera ray.
 /// The tile loop also runs adaptive sampling (RenderContext::adaptive_batch > 0): after every
 /// batch of B samples of a pixel it stops once 1.96 sigma / sqrt(n) <= tolerance * mu for the
 /// illuminance (luminance) of the samples taken, as the homework defines it.
 class PixelIntegrator : public Integrator {
  public:
-  void render(const RenderContext& context, Film& film) const override;
+  void render(const RenderContext& context, Film& film) const final;
   uint64_t progress_total(int width, int height, int spp) const override;
 
  protected:
-  /// Radiance arriving along `ray` (a camera ray). Called concurrently from many threads.
-  virtual Rgb li(const Ray& ray, Sampler& sampler, const RenderContext& context) const = 0;
-  /// li() plus the AOVs of the ray's first hit. The default calls li() and traces the ray once
-  /// more for the AOVs; integrators that find the first hit anyway override it.
-  virtual Rgb li_aov(const Ray& ray, Sampler& sampler, const RenderContext& context,
-                     AovSample& aovs) const;
-  /// Called by render() on the calling thread before the first li() and after the last one:
-  /// subclasses build and drop per-render state there (lights, BSDFs). render() of one
-  /// instance must therefore not run concurrently with itself.
-  virtual void begin_render(const RenderContext& context) const {}
-  virtual void end_render() const {}
+  /// The estimator of one render, with its per-render state built from `context` (which
+  /// outlives it). Called once per render() on the calling thread, before the first sample.
+  virtual std::unique_ptr<PixelEstimator> prepare(const RenderContext& context) const = 0;
 };
 
-/// The AOVs (albedo, shading normal, depth) of the first hit of `ray`, by one intersect().
-AovSample first_hit_aovs(const Ray& ray, const RenderContext& context);
+/// The AOVs (albedo, shading normal, depth) of the hit `hit` of `ray`, whose surface is `si`.
+AovSample hit_aovs(const Scene& scene, const Ray& ray, const Hit& hit,
+                   const SurfaceInteraction& si);
 
 /// The table of integrators. Parameters use the integrator's name as prefix.
 const Registry<Integrator>& integrator_registry();

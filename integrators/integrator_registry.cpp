@@ -1,5 +1,6 @@
 #include <memory>
 
+#include "integrators/ao_integrator.h"
 #include "integrators/debug_integrators.h"
 #include "integrators/direct_integrator.h"
 #include "integrators/integrator.h"
@@ -14,12 +15,14 @@ const Registry<Integrator>& integrator_registry() {
       {
           Entry{"path",
                 "global illumination: path tracing with next-event estimation, MIS, Russian "
-                "roulette (path.mis, path.accumulate, path.rr, path.rr_depth, "
-                "path.rr_probability, path.microfacet)",
+                "roulette (path.max_depth or -m, path.light_samples or -l, path.hemisphere or "
+                "-H, path.mis, path.accumulate, path.rr, path.rr_depth, path.rr_probability, "
+                "path.microfacet)",
                 [](const ParamSet& p) { return std::make_unique<PathIntegrator>(p); }},
           Entry{"direct",
                 "zero plus one bounce: light importance sampling, or uniform hemisphere "
-                "sampling with -H (direct.microfacet)",
+                "sampling (direct.light_samples or -l, direct.hemisphere or -H, "
+                "direct.microfacet)",
                 [](const ParamSet& p) { return std::make_unique<DirectIntegrator>(p); }},
           Entry{"ao", "ambient occlusion at the first hit (ao.samples, ao.max_distance)",
                 [](const ParamSet& p) { return std::make_unique<AoIntegrator>(p); }},

@@ -13,9 +13,23 @@ constexpr float kShadowEpsilon = 1e-4f;
 
 }  // namespace
 
-ShadingContext::ShadingContext(const RenderContext& context, const BsdfOptions& options)
-    : bsdfs(make_bsdfs(context.scene.materials, options)),
-      lights(context.scene, context.environment, context.camera.up) {}
+LightTransportSettings::LightTransportSettings(const std::string& name, const ParamSet& params)
+    : light_samples(
+          int(params.get_int(name + ".light_samples", kDefaultLightSamples, 1, kMaxLightSamples))),
+      hemisphere(params.get_bool(name + ".hemisphere", false)) {
+  const std::string model = params.get_string(name + ".microfacet", "beckmann");
+  if (model == "beckmann") {
+    bsdf.microfacet = MicrofacetModel::kBeckmann;
+  } else if (model == "ggx") {
+    bsdf.microfacet = MicrofacetModel::kGgx;
+  } else {
+    throw Error(ErrorKind::kUsage,
+                "bad value '" + model + "' for " + name + ".microfacet; expected beckmann or ggx");
+  }
+}
+
+ShadingContext::ShadingContext(const Scene& scene, const BsdfOptions& options)
+    : bsdfs(make_bsdfs(scene.materials, options)), lights(scene) {}
 
 ShadingPoint::ShadingPoint(const SurfaceInteraction& si_in, const Ray& ray, const Bsdf& bsdf_in)
     : si(si_in),
@@ -86,9 +100,9 @@ Rgb emitted_radiance(const SurfaceInteraction& si, const Ray& ray, const Shading
 }
 
 Rgb estimate_direct_lights(const ShadingPoint& sp, Sampler& sampler, const RenderContext& context,
-                           const ShadingContext& shading) {
+                           const ShadingContext& shading, int light_samples) {
   Rgb sum(0.0f);
-  const int area_samples = std::max(1, context.light_samples);
+  const int area_samples = std::max(1, light_samples);
   for (const auto& light : shading.lights.lights()) {
     const int n = light->is_delta() ? 1 : area_samples;
     Rgb light_sum(0.0f);
@@ -107,8 +121,9 @@ Rgb estimate_direct_lights(const ShadingPoint& sp, Sampler& sampler, const Rende
 }
 
 Rgb estimate_direct_hemisphere(const ShadingPoint& sp, Sampler& sampler,
-                               const RenderContext& context, const ShadingContext& shading) {
-  const int n = std::max(1, context.light_samples) * std::max<int>(1, int(shading.lights.size()));
+                               const RenderContext& context, const ShadingContext& shading,
+                               int light_samples) {
+  const int n = std::max(1, light_samples) * std::max<int>(1, int(shading.lights.size()));
   const float side = sp.wo.z < 0.0f ? -1.0f : 1.0f;
   Rgb sum(0.0f);
   for (int i = 0; i < n; ++i) {
@@ -129,24 +144,5 @@ Rgb estimate_direct_hemisphere(const ShadingPoint& sp, Sampler& sampler,
   }
   return sum / float(n);
 }
-
-LightTransportIntegrator::LightTransportIntegrator(const std::string& name,
-                                                   const ParamSet& params) {
-  const std::string model = params.get_string(name + ".microfacet", "beckmann");
-  if (model == "beckmann") {
-    bsdf_options_.microfacet = MicrofacetModel::kBeckmann;
-  } else if (model == "ggx") {
-    bsdf_options_.microfacet = MicrofacetModel::kGgx;
-  } else {
-    throw Error(ErrorKind::kUsage,
-                "bad value '" + model + "' for " + name + ".microfacet; expected beckmann or ggx");
-  }
-}
-
-void LightTransportIntegrator::begin_render(const RenderContext& context) const {
-  shading_ = std::make_unique<ShadingContext>(context, bsdf_options_);
-}
-
-void LightTransportIntegrator::end_render() const { shading_.reset(); }
 
 }  // namespace prism

@@ -8,15 +8,30 @@
 #include "integrators/bsdf/bsdf.h"
 #include "integrators/bsdf/bsdf_factory.h"
 #include "integrators/integrator.h"
+#include "integrators/integrator_defaults.h"
 #include "integrators/lights/light_set.h"
 #include "integrators/sampling/frame.h"
 
 namespace prism {
 
+/// The settings every light-transport integrator reads from its parameters (prefix `<name>.`):
+/// - microfacet: beckmann (default) or ggx;
+/// - light_samples (default kDefaultLightSamples, in [1, kMaxLightSamples]; -l): samples per
+///   non-delta light of the one-bounce estimators, or hemisphere rays per light;
+/// - hemisphere (default false; -H): the one-bounce estimate by uniform hemisphere sampling.
+struct LightTransportSettings {
+  /// Throws Error(kUsage) naming the key on a bad value.
+  LightTransportSettings(const std::string& name, const ParamSet& params);
+  BsdfOptions bsdf;
+  int light_samples;
+  bool hemisphere;
+};
+
 /// Per-render shading state of the light-transport integrators: one BSDF per material and the
-/// scene's lights. Built once per render from the Scene, read-only afterwards.
+/// scene's lights. Built once per render from the Scene (which must outlive it), read-only
+/// afterwards.
 struct ShadingContext {
-  ShadingContext(const RenderContext& context, const BsdfOptions& options);
+  ShadingContext(const Scene& scene, const BsdfOptions& options);
   std::vector<std::unique_ptr<Bsdf>> bsdfs;
   LightSet lights;
 };
@@ -50,33 +65,17 @@ struct ShadingPoint {
 /// The homework's one-bounce estimator at `sp` by light importance sampling: every light,
 /// `light_samples` samples for each non-delta light and one for each delta light.
 Rgb estimate_direct_lights(const ShadingPoint& sp, Sampler& sampler, const RenderContext& context,
-                           const ShadingContext& shading);
+                           const ShadingContext& shading, int light_samples);
 
 /// The homework's one-bounce estimator at `sp` by uniform hemisphere sampling (on wo's side):
 /// light_samples x (number of lights, at least 1) rays; light arrives only from emissive
 /// geometry hit and from infinite lights on escape.
 Rgb estimate_direct_hemisphere(const ShadingPoint& sp, Sampler& sampler,
-                               const RenderContext& context, const ShadingContext& shading);
+                               const RenderContext& context, const ShadingContext& shading,
+                               int light_samples);
 
 /// Radiance emitted toward the previous vertex by the surface at `si` hit by `ray` (0 unless
 /// it is an emissive-surface light).
 Rgb emitted_radiance(const SurfaceInteraction& si, const Ray& ray, const ShadingContext& shading);
-
-/// Base of the integrators that shade surfaces: builds the ShadingContext per render and
-/// reads `<name>.microfacet` (beckmann | ggx) from the parameters.
-class LightTransportIntegrator : public PixelIntegrator {
- public:
-  LightTransportIntegrator(const std::string& name, const ParamSet& params);
-
- protected:
-  void begin_render(const RenderContext& context) const override;
-  void end_render() const override;
-  /// Valid between begin_render() and end_render().
-  const ShadingContext& shading() const { return *shading_; }
-
- private:
-  BsdfOptions bsdf_options_;
-  mutable std::unique_ptr<ShadingContext> shading_;
-};
 
 }  // namespace prism

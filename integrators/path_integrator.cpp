@@ -7,36 +7,50 @@
 
 namespace prism {
 
-PathIntegrator::PathIntegrator(const ParamSet& params)
-    : LightTransportIntegrator("path", params),
-      mis_(params.get_bool("path.mis", true)),
-      accumulate_(params.get_bool("path.accumulate", true)),
-      russian_roulette_(params.get_bool("path.rr", true)),
-      rr_probability_(float(params.get_float("path.rr_probability", 0.0, 0.0, 1.0))) {
-  rr_depth_ = int(params.get_int("path.rr_depth", rr_probability_ > 0.0f ? 1 : 3, 0, 1 << 20));
-}
+PathIntegrator::Settings::Settings(const ParamSet& params)
+    : light_transport("path", params),
+      max_depth(int(params.get_int("path.max_depth", kDefaultMaxDepth, 0, kMaxDepth))),
+      mis(params.get_bool("path.mis", true)),
+      accumulate(params.get_bool("path.accumulate", true)),
+      russian_roulette(params.get_bool("path.rr", true)),
+      rr_probability(float(params.get_float("path.rr_probability", 0.0, 0.0, 1.0))),
+      rr_depth(int(params.get_int("path.rr_depth", rr_probability > 0.0f ? 1 : 3, 0, 1 << 20))) {}
 
-Rgb PathIntegrator::li(const Ray& ray, Sampler& sampler, const RenderContext& context) const {
-  AovSample aovs;
-  return li_aov(ray, sampler, context, aovs);
-}
+namespace {
 
-Rgb PathIntegrator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler,
-                                      const RenderContext& context,
-                                      const ShadingContext& shading) const {
-  const int n = std::max(1, context.light_samples);
+class PathEstimator final : public PixelEstimator {
+ public:
+  PathEstimator(const RenderContext& context, const PathIntegrator::Settings& settings)
+      : context_(context),
+        settings_(settings),
+        shading_(context.scene, settings.light_transport.bsdf) {}
+
+  Rgb li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const override;
+
+ private:
+  /// Light arriving at `sp` from one light chosen by power, MIS-weighted against BSDF
+  /// sampling; averaged over light_samples samples.
+  Rgb sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const;
+
+  const RenderContext& context_;
+  const PathIntegrator::Settings settings_;
+  const ShadingContext shading_;
+};
+
+Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const {
+  const int n = std::max(1, settings_.light_transport.light_samples);
   Rgb sum(0.0f);
   for (int i = 0; i < n; ++i) {
     const float u_light = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     float pmf = 0.0f;
-    const LightSource* light = shading.lights.sample(u_light, &pmf);
+    const LightSource* light = shading_.lights.sample(u_light, &pmf);
     if (!light || !(pmf > 0.0f)) continue;
     const std::optional<LightLiSample> ls = light->sample_li(sp.si.position, u);
     if (!ls || !(ls->pdf > 0.0f)) continue;
     const Rgb f = sp.eval_cos(ls->wi);
     if (max_component(f) <= 0.0f) continue;
-    if (!sp.unoccluded(context.accel, ls->wi, ls->distance)) continue;
+    if (!sp.unoccluded(context_.accel, ls->wi, ls->distance)) continue;
     const float light_pdf = pmf * ls->pdf;
     // Only lights that BSDF-sampled rays can find compete with BSDF sampling.
     const float weight =
@@ -46,15 +60,17 @@ Rgb PathIntegrator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler,
   return sum / float(n);
 }
 
-Rgb PathIntegrator::li_aov(const Ray& camera_ray, Sampler& sampler, const RenderContext& context,
-                           AovSample& aovs) const {
-  const ShadingContext& shading = this->shading();
-  const int max_depth = std::max(0, context.max_depth);
-  const float nee_samples = float(std::max(1, context.light_samples));
+Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const {
+  const RenderContext& context = context_;
+  const ShadingContext& shading = shading_;
+  const int light_samples = settings_.light_transport.light_samples;
+  const bool accumulate = settings_.accumulate;
+  const int max_depth = std::max(0, settings_.max_depth);
+  const float nee_samples = float(std::max(1, light_samples));
   Rgb radiance(0.0f);
   // Adds light that scattered `bounces` times before reaching the camera.
   const auto add = [&](const Rgb& contribution, int bounces) {
-    if (accumulate_ || bounces == max_depth) radiance += contribution;
+    if (accumulate || bounces == max_depth) radiance += contribution;
   };
 
   Ray ray = camera_ray;
@@ -72,7 +88,7 @@ Rgb PathIntegrator::li_aov(const Ray& camera_ray, Sampler& sampler, const Render
         if (max_component(le) <= 0.0f) continue;
         if (specular) {
           add(beta * le, bounces);
-        } else if (mis_) {
+        } else if (settings_.mis) {
           const float light_pdf =
               shading.lights.pmf(shading.lights.index_of(light)) * light->pdf_li_escaped(w);
           add(beta * le * power_heuristic(1.0f, bsdf_pdf, nee_samples, light_pdf), bounces);
@@ -92,7 +108,7 @@ Rgb PathIntegrator::li_aov(const Ray& camera_ray, Sampler& sampler, const Render
       if (max_component(le) > 0.0f) {
         if (specular) {
           add(beta * le, bounces);
-        } else if (mis_) {
+        } else if (settings_.mis) {
           const float light_pdf = shading.lights.pmf(shading.lights.index_of(light)) *
                                   light->pdf_li(previous_position, si);
           add(beta * le * power_heuristic(1.0f, bsdf_pdf, nee_samples, light_pdf), bounces);
@@ -102,14 +118,14 @@ Rgb PathIntegrator::li_aov(const Ray& camera_ray, Sampler& sampler, const Render
     if (bounces >= max_depth || bsdf.is_black()) break;
 
     const ShadingPoint sp(si, ray, bsdf);
-    if (!bsdf.is_delta() && (accumulate_ || bounces + 1 == max_depth)) {
+    if (!bsdf.is_delta() && (accumulate || bounces + 1 == max_depth)) {
       Rgb direct;
-      if (mis_) {
-        direct = sample_lights_mis(sp, sampler, context, shading);
-      } else if (context.hemisphere_sampling) {
-        direct = estimate_direct_hemisphere(sp, sampler, context, shading);
+      if (settings_.mis) {
+        direct = sample_lights_mis(sp, sampler);
+      } else if (settings_.light_transport.hemisphere) {
+        direct = estimate_direct_hemisphere(sp, sampler, context, shading, light_samples);
       } else {
-        direct = estimate_direct_lights(sp, sampler, context, shading);
+        direct = estimate_direct_lights(sp, sampler, context, shading, light_samples);
       }
       add(beta * direct, bounces + 1);
     }
@@ -125,9 +141,10 @@ Rgb PathIntegrator::li_aov(const Ray& camera_ray, Sampler& sampler, const Render
     ray = sp.spawn(bs->wi);
     if (!is_finite(beta) || max_component(beta) <= 0.0f) break;
 
-    if (russian_roulette_ && bounces + 1 >= rr_depth_) {
-      const float q = rr_probability_ > 0.0f ? rr_probability_
-                                             : std::min(1.0f, max_component(beta * eta_scale));
+    if (settings_.russian_roulette && bounces + 1 >= settings_.rr_depth) {
+      const float q = settings_.rr_probability > 0.0f
+                          ? settings_.rr_probability
+                          : std::min(1.0f, max_component(beta * eta_scale));
       if (q < 1.0f) {
         if (sampler.get_1d() >= q) break;
         beta /= q;
@@ -135,6 +152,14 @@ Rgb PathIntegrator::li_aov(const Ray& camera_ray, Sampler& sampler, const Render
     }
   }
   return radiance;
+}
+
+}  // namespace
+
+PathIntegrator::PathIntegrator(const ParamSet& params) : settings_(params) {}
+
+std::unique_ptr<PixelEstimator> PathIntegrator::prepare(const RenderContext& context) const {
+  return std::make_unique<PathEstimator>(context, settings_);
 }
 
 }  // namespace prism

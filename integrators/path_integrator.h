@@ -5,38 +5,41 @@
 namespace prism {
 
 /// Unidirectional path tracing with next-event estimation. Parameters (prefix "path."):
+/// - max_depth (default kDefaultMaxDepth, in [0, kMaxDepth]; -m): the most bounces a path
+///   takes.
 /// - mis (default true): light sampling and BSDF sampling combined by multiple importance
 ///   sampling (power heuristic), lights chosen by power, light_samples NEE samples per vertex;
 ///   false reproduces the homework's estimator: at every vertex the one-bounce estimate of
-///   every light (or by hemisphere sampling with -H), emission found by BSDF-sampled rays
-///   counted only after specular bounces.
+///   every light (or by hemisphere sampling with hemisphere=true), emission found by
+///   BSDF-sampled rays counted only after specular bounces.
 /// - accumulate (default true): the sum of bounces 0..max_depth; false gives only bounce
 ///   max_depth (light that scattered exactly max_depth times).
 /// - rr (default true), rr_depth (default 3, or 1 with rr_probability), rr_probability
 ///   (default 0: continuation probability from the path throughput; in (0,1]: that fixed
 ///   continuation probability, as the homework does).
-/// - microfacet: beckmann (default) or ggx.
-class PathIntegrator final : public LightTransportIntegrator {
+/// - microfacet, light_samples, hemisphere: see LightTransportSettings.
+class PathIntegrator final : public PixelIntegrator {
  public:
+  /// Everything the estimator reads from the parameters.
+  struct Settings {
+    explicit Settings(const ParamSet& params);
+    LightTransportSettings light_transport;
+    int max_depth;
+    bool mis;
+    bool accumulate;
+    bool russian_roulette;
+    float rr_probability;
+    int rr_depth;
+  };
+
   explicit PathIntegrator(const ParamSet& params);
   std::string_view name() const override { return "path"; }
 
  protected:
-  Rgb li(const Ray& ray, Sampler& sampler, const RenderContext& context) const override;
-  Rgb li_aov(const Ray& ray, Sampler& sampler, const RenderContext& context,
-             AovSample& aovs) const override;
+  std::unique_ptr<PixelEstimator> prepare(const RenderContext& context) const override;
 
  private:
-  /// Light arriving at `sp` from one light chosen by power, MIS-weighted against BSDF
-  /// sampling; averaged over context.light_samples samples.
-  Rgb sample_lights_mis(const ShadingPoint& sp, Sampler& sampler, const RenderContext& context,
-                        const ShadingContext& shading) const;
-
-  bool mis_;
-  bool accumulate_;
-  bool russian_roulette_;
-  int rr_depth_;
-  float rr_probability_;
+  Settings settings_;
 };
 
 }  // namespace prism

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "color/image_output.h"
+#include "scenes/scene_loader.h"
 #include "tests/support/app_test_helpers.h"
 #include "tests/support/test_support.h"
 
@@ -99,6 +100,99 @@ TEST(AppCli, ThreadCountDoesNotChangePixels) {
   EXPECT_TRUE(pixels[0] == pixels[1]) << "pixels differ between 1 and 2 threads";
   EXPECT_TRUE(std::any_of(pixels[0].begin(), pixels[0].end(), [](float v) { return v > 0.0f; }))
       << "the image is black: the comparison would prove nothing";
+}
+
+/// R, G, B, AOV and variance values of an EXR prism wrote (written as float: exact).
+std::vector<float> exr_pixels(const std::filesystem::path& path) {
+  return read_image_file(path).image.pixels;
+}
+
+TEST(AppCli, IntegratorFlagsAreAliasesOfItsParameters) {
+  const TestDirs dirs("app_aliases");
+  const std::string scene = default_scene_path().string();
+  const std::vector<std::string> base = {"render", scene, "-r", "32",         "24",
+                                         "-s",     "2",   "-q", "--exr-type", "float",
+                                         "--seed", "5",   "-t", "2",          "--integrator"};
+  const auto render = [&](const std::string& integrator, const std::string& output,
+                          std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.push_back(integrator);
+    args.insert(args.end(), extra.begin(), extra.end());
+    args.insert(args.end(), {"-f", (dirs.out / output).string()});
+    return run_prism(args);
+  };
+  // -m 3 is path.max_depth=3, bit for bit; both at once are fine when they agree.
+  for (const auto& [output, extra] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"flag.exr", {"-m", "3"}},
+           {"set.exr", {"--set", "path.max_depth=3"}},
+           {"both.exr", {"-m", "3", "--set", "path.max_depth=3"}},
+           {"other.exr", {"-m", "1"}}}) {
+    const ProgramResult r = render("path", output, extra);
+    ASSERT_EQ(r.exit_code, 0) << output << ": " << r.err;
+    EXPECT_TRUE(r.err.empty()) << output << ": " << r.err;
+  }
+  const std::vector<float> flag = exr_pixels(dirs.out / "flag.exr");
+  ASSERT_FALSE(flag.empty());
+  EXPECT_TRUE(flag == exr_pixels(dirs.out / "set.exr")) << "-m 3 differs from path.max_depth=3";
+  EXPECT_TRUE(flag == exr_pixels(dirs.out / "both.exr"));
+  EXPECT_FALSE(flag == exr_pixels(dirs.out / "other.exr")) << "-m has no effect: proves nothing";
+  // The provenance records the depth in effect either way; --set keys alone under prism:params.
+  const ImageFileContents by_flag = read_image_file(dirs.out / "flag.exr");
+  const ImageFileContents by_set = read_image_file(dirs.out / "set.exr");
+  EXPECT_EQ(by_flag.attribute("prism:max_depth"), "3");
+  EXPECT_EQ(by_set.attribute("prism:max_depth"), "3");
+  EXPECT_EQ(by_flag.attribute("prism:params"), "");
+  EXPECT_EQ(by_set.attribute("prism:params"), "path.max_depth=3");
+
+  // An integrator without the parameters ignores the flags, silently (the homework's command
+  // lines pass -l and -m to every integrator); the provenance still records them.
+  ProgramResult r = render("normals", "normals.exr", {"-l", "4", "-m", "2", "-H"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const ImageFileContents normals = read_image_file(dirs.out / "normals.exr");
+  EXPECT_EQ(normals.attribute("prism:light_samples"), "4");
+  EXPECT_EQ(normals.attribute("prism:max_depth"), "2");
+
+  // A flag and its key with different values: a usage error naming both.
+  expect_one_line_error(render("path", "conflict.exr", {"-m", "3", "--set", "path.max_depth=4"}), 2,
+                        {"-m 3", "path.max_depth=4"});
+  expect_one_line_error(
+      render("direct", "conflict.exr", {"-H", "--set", "direct.hemisphere=false"}), 2,
+      {"-H", "direct.hemisphere=false"});
+  // A key the integrator does not have stays unknown, flag or not.
+  expect_one_line_error(render("normals", "unknown.exr", {"--set", "normals.max_depth=3"}), 2,
+                        {"unknown parameter 'normals.max_depth'"});
+  expect_one_line_error(render("direct", "unknown.exr", {"-m", "3", "--set", "direct.max_depth=3"}),
+                        2, {"unknown parameter 'direct.max_depth'"});
+  EXPECT_FALSE(std::filesystem::exists(dirs.out / "conflict.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dirs.out / "unknown.exr"));
+}
+
+TEST(AppCli, SceneFileMaxDepthIsTheIntegratorsUnlessTheCommandLineGivesOne) {
+  const TestDirs dirs("app_scene_depth");
+  std::ifstream in(default_scene_path());
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string shallow =
+      dirs.scene("shallow.json", replaced(text, "\"max_depth\": 5", "\"max_depth\": 1"));
+  const auto render = [&](const std::string& scene, const std::string& output,
+                          std::vector<std::string> extra) {
+    std::vector<std::string> args = {
+        "render", scene,        "-r",    "32", "24", "-s", "2",
+        "-q",     "--exr-type", "float", "-t", "2",  "-f", (dirs.out / output).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const ProgramResult r = run_prism(args);
+    EXPECT_EQ(r.exit_code, 0) << output << ": " << r.err;
+    EXPECT_TRUE(r.err.empty()) << output << ": " << r.err;
+    return exr_pixels(dirs.out / output);
+  };
+  const std::string original = default_scene_path().string();
+  EXPECT_TRUE(render(shallow, "scene.exr", {}) == render(original, "m1.exr", {"-m", "1"}));
+  // The command line overrides the scene file, by flag or by --set.
+  const std::vector<float> m3 = render(original, "m3.exr", {"-m", "3"});
+  EXPECT_TRUE(render(shallow, "flag.exr", {"-m", "3"}) == m3);
+  EXPECT_TRUE(render(shallow, "set.exr", {"--set", "path.max_depth=3"}) == m3);
+  EXPECT_EQ(read_image_file(dirs.out / "scene.exr").attribute("prism:max_depth"), "1");
+  EXPECT_EQ(read_image_file(dirs.out / "set.exr").attribute("prism:max_depth"), "3");
 }
 
 TEST(AppCli, DefaultSceneRendersWithoutSceneArgument) {

@@ -187,11 +187,11 @@ TEST(IntegratorsAnalytic, DiffuseSphereInAUniformEnvironment) {
   environment.height = 8;
   environment.channel_names = {"R", "G", "B"};
   environment.pixels.assign(16 * 8 * 3, 1.0f);
+  test::set_environment(scene, std::move(environment));
   TestRender settings;
   settings.width = settings.height = 16;
   settings.spp = 64;
   settings.max_depth = 3;
-  settings.environment = &environment;
   // Mean radiance of the pixels well inside the silhouette; the background must be 1.
   const auto sphere_mean = [](const Image& image) {
     double sum = 0.0, n = 0.0;

@@ -341,6 +341,36 @@ TEST(IntegratorsLight, LightSetCountsEmissiveMeshesOnceAndChoosesByPower) {
   EXPECT_EQ(set.surface_light(si), nullptr);
 }
 
+TEST(IntegratorsLight, LightSetLightsTheSceneWithItsEnvironmentMap) {
+  Scene scene = scene_with_emitters();
+  const size_t without = LightSet(scene).size();
+  // Rows 0-1 (the hemisphere around up = +z) red, rows 2-3 blue.
+  const Rgb red(2.0f, 0.0f, 0.0f), blue(0.0f, 0.0f, 1.0f);
+  SceneEnvironment environment;
+  environment.image.width = 8;
+  environment.image.height = 4;
+  environment.image.channel_names = {"R", "G", "B"};
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 8; ++x) {
+      const Rgb c = y < 2 ? red : blue;
+      for (int k = 0; k < 3; ++k) environment.image.pixels.push_back(c[k]);
+    }
+  }
+  environment.up = Vec3(0.0f, 0.0f, 1.0f);
+  scene.environment = environment;
+  const LightSet set(scene);
+  ASSERT_EQ(set.size(), without + 1);
+  ASSERT_EQ(set.infinite_lights().size(), 1u);
+  EXPECT_EQ(set.le_escaped(Vec3(0.0f, 0.0f, 1.0f)), red);
+  EXPECT_EQ(set.le_escaped(glm::normalize(Vec3(1.0f, 0.5f, 0.2f))), red);
+  EXPECT_EQ(set.le_escaped(glm::normalize(Vec3(-1.0f, 0.5f, -0.2f))), blue);
+  // The same map about another up: its poles follow.
+  scene.environment->up = Vec3(0.0f, -1.0f, 0.0f);
+  const LightSet turned(scene);
+  EXPECT_EQ(turned.le_escaped(Vec3(0.0f, -1.0f, 0.0f)), red);
+  EXPECT_EQ(turned.le_escaped(Vec3(0.0f, 0.0f, 1.0f) * 0.6f + Vec3(0.0f, 0.8f, 0.0f)), blue);
+}
+
 TEST(IntegratorsLight, AreaLightWithoutDuplicateIsKept) {
   Scene scene = scene_with_emitters();
   scene.lights[0].duplicates_emissive_mesh = false;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <set>
+#include <thread>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -35,6 +36,43 @@ TEST(IntegratorsOutput, RegistryListsEveryIntegrator) {
   ParamSet bad_rr;
   bad_rr.set("path.rr_probability", "1.5");
   EXPECT_THROW(registry.create("path", bad_rr), Error);
+}
+
+TEST(IntegratorsOutput, FlagAliasesReachTheIntegratorsThatReadThem) {
+  // -m 2 for every integrator, as the driver gives it: only path reads it; nothing is unused.
+  for (const char* name : {"path", "direct", "ao", "normals", "depth"}) {
+    ParamSet params;
+    params.set_alias(std::string(name) + ".max_depth", "2", "-m 2");
+    params.set_alias(std::string(name) + ".light_samples", "4", "-l 4");
+    integrator_registry().create(name, params);
+    EXPECT_TRUE(params.unused_with_prefix(std::string(name) + ".").empty()) << name;
+    EXPECT_TRUE(params.keys().empty()) << name;
+    EXPECT_EQ(params.to_string(), "") << name;
+  }
+  // An explicit value agrees with the alias when it parses to the same value.
+  ParamSet same;
+  same.set_alias("path.max_depth", "3", "-m 3");
+  same.set("path.max_depth", "03");
+  EXPECT_NO_THROW(integrator_registry().create("path", same));
+  EXPECT_EQ(same.to_string(), "path.max_depth=03");
+  ParamSet conflict;
+  conflict.set_alias("direct.hemisphere", "true", "-H");
+  conflict.set("direct.hemisphere", "off");
+  try {
+    integrator_registry().create("direct", conflict);
+    FAIL() << "no error for -H with direct.hemisphere=off";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
+    EXPECT_NE(std::string(e.what()).find("direct.hemisphere=off"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("-H"), std::string::npos) << e.what();
+  }
+  // The parameters' ranges are the flags'.
+  ParamSet too_deep;
+  too_deep.set("path.max_depth", "1025");
+  EXPECT_THROW(integrator_registry().create("path", too_deep), Error);
+  ParamSet no_samples;
+  no_samples.set("direct.light_samples", "0");
+  EXPECT_THROW(integrator_registry().create("direct", no_samples), Error);
 }
 
 /// A unit sphere 3 units in front of the camera, nothing else.
@@ -186,6 +224,63 @@ TEST(IntegratorsOutput, ImagesDoNotDependOnTheThreadCount) {
   }
   ASSERT_EQ(one.pixels.size(), two.pixels.size());
   for (size_t i = 0; i < one.pixels.size(); ++i) ASSERT_EQ(one.pixels[i], two.pixels[i]) << i;
+}
+
+/// What one render reads besides the integrator: a scene and its accelerator, camera, sampler.
+struct RenderInputs {
+  /// For a square film of size x size pixels.
+  RenderInputs(Scene scene_in, int size_in)
+      : scene(std::move(scene_in)),
+        accel(accelerator_registry().create("bvh", ParamSet{})),
+        camera(scene.camera),
+        sampler(create_sampler("sobol", 3)),
+        size(size_in) {
+    accel->build(scene.geometry);
+    camera.fit_to_aspect(1.0f);
+  }
+  RenderContext context() const {
+    return RenderContext{
+        .scene = scene, .accel = *accel, .camera = camera, .sampler_prototype = *sampler, .spp = 4};
+  }
+  Scene scene;
+  std::unique_ptr<Accelerator> accel;
+  Camera camera;
+  std::unique_ptr<Sampler> sampler;
+  int size;
+};
+
+TEST(IntegratorsOutput, ConcurrentRendersOfOneInstanceMatchSequentialOnes) {
+  // Two different scenes (other materials, lights, size and film), so that state of one render
+  // leaking into the other would show.
+  Scene with_environment = test::cornell_box({.camera_on_floor = true});
+  Image sky;
+  sky.width = 8;
+  sky.height = 4;
+  sky.channel_names = {"R", "G", "B"};
+  sky.pixels.assign(8 * 4 * 3, 0.5f);
+  test::set_environment(with_environment, std::move(sky));
+  const RenderInputs a(
+      test::cornell_box({.spheres = true, .sphere_material = MaterialType::kGlass}), 24);
+  const RenderInputs b(std::move(with_environment), 20);
+  for (const char* name : {"path", "direct", "ao", "normals", "depth"}) {
+    SCOPED_TRACE(name);
+    const std::unique_ptr<Integrator> integrator = integrator_registry().create(name, ParamSet{});
+    const auto render = [&](const RenderInputs& inputs, Film& film) {
+      integrator->render(inputs.context(), film);
+    };
+    Film sequential_a(a.size, a.size), sequential_b(b.size, b.size);
+    render(a, sequential_a);
+    render(b, sequential_b);
+    Film concurrent_a(a.size, a.size), concurrent_b(b.size, b.size);
+    {
+      std::thread first([&] { render(a, concurrent_a); });
+      std::thread second([&] { render(b, concurrent_b); });
+      first.join();
+      second.join();
+    }
+    EXPECT_TRUE(concurrent_a.resolve().pixels == sequential_a.resolve().pixels);
+    EXPECT_TRUE(concurrent_b.resolve().pixels == sequential_b.resolve().pixels);
+  }
 }
 
 TEST(IntegratorsOutput, AmbientOcclusion) {

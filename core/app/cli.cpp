@@ -33,6 +33,10 @@ std::string render_footer() {
 scene file's settings, which override prism's defaults: resolution {} x {}, {} spp,
 integrator '{}', accelerator '{}', sampler '{}', seed {}, all hardware threads.
 
+Integrator flags: -l, -m and -H (and the scene file's max_depth) stand for the parameters
+<integrator>.light_samples, .max_depth and .hemisphere of the integrators that have them (see
+`prism list`), and are ignored by the others. --set with the same key must agree with them.
+
 Output: -f FILE picks the format by extension. FILE.exr writes a scene-linear EXR (add --png
 for FILE.png beside it); FILE.png/.jpg/.tif writes only that display-referred image (add --exr
 for FILE.exr beside it). Without -f, prism writes <scene name>.exr in the current folder.
@@ -81,8 +85,10 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("--sampler", o.sampler, "sampler: " + sampler_registry().names_joined())
       ->capture_default_str();
   render.add_option("-s,--spp", o.spp, "camera rays per pixel");
-  render.add_option("-l,--light-samples", o.light_samples, "samples per area light");
-  render.add_option("-m,--max-depth", o.max_depth, "maximum ray depth");
+  render.add_option("-l,--light-samples", o.light_samples,
+                    "samples per area light (alias of <integrator>.light_samples: direct, path)");
+  render.add_option("-m,--max-depth", o.max_depth,
+                    "maximum ray depth (alias of <integrator>.max_depth: path)");
   render.add_option("-t,--threads", o.threads, "worker threads; 0 = all (default)");
   render.add_option("--seed", o.seed, "sampler seed (non-negative integer)");
   render.add_option("-r,--resolution", o.resolution, "image width and height in pixels")
@@ -93,7 +99,8 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("-a,--adaptive", o.adaptive, "adaptive sampling batch size and tolerance")
       ->type_name("B TOL");
   render.add_flag("-H,--hemisphere", o.hemisphere_sampling,
-                  "direct light by uniform hemisphere sampling");
+                  "direct light by uniform hemisphere sampling (alias of "
+                  "<integrator>.hemisphere=true: direct, path)");
   render.add_option("-b,--lens-radius", o.lens_radius, "thin-lens aperture radius (0: pinhole)");
   render.add_option("-d,--focal-distance", o.focal_distance, "distance of the plane in focus");
   render.add_option("-e,--environment", o.environment_map,

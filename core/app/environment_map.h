@@ -11,8 +11,8 @@ namespace prism {
 
 /// An environment map (-e) read from a file and converted into the working space.
 struct EnvironmentMap {
-  /// Channels R, G, B in the working space, latitude-longitude layout, row 0 at the pole along
-  /// the camera's up vector (what RenderContext::environment expects).
+  /// Channels R, G, B in the working space, latitude-longitude layout, row 0 at a pole (what
+  /// SceneEnvironment::image holds; the driver puts that pole along the camera's up vector).
   Image image;
   std::string color_space;  ///< the colour space the file's values were read as
   std::string space_rule;   ///< why: "prism:colorSpace", "oiio:ColorSpace" or "scene_linear"

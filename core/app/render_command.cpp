@@ -13,6 +13,7 @@
 #include "core/app/commands.h"
 #include "core/app/component_params.h"
 #include "core/app/environment_map.h"
+#include "core/app/integrator_aliases.h"
 #include "core/app/provenance.h"
 #include "core/film.h"
 #include "core/parallel.h"
@@ -82,35 +83,41 @@ int run_render_command(const RenderOptions& options) {
 
   const std::filesystem::path scene_path = render_scene_path(options);
   Scene scene = load_scene(scene_path, SceneLoadOptions{.literal_camera = options.literal_camera});
-  const RenderSettings settings = resolve_render_settings(options, scene);
+  RenderSettings settings = resolve_render_settings(options, scene);
 
   const ColorPipeline pipeline(options.color);
   pipeline.convert_scene_to_working(scene, pipeline.scene_file_space());
-  // The environment map is input like the scene: read and checked before any long work.
-  std::optional<EnvironmentMap> environment;
+  // The environment map is input like the scene: read and checked before any long work. Its
+  // row 0 is the pole along the camera's up.
   if (!options.environment_map.empty()) {
-    environment = load_environment_map(options.environment_map, pipeline);
-    for (const auto& warning : environment->warnings) {
+    EnvironmentMap environment = load_environment_map(options.environment_map, pipeline);
+    for (const auto& warning : environment.warnings) {
       std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
     }
+    scene.environment = SceneEnvironment{.image = std::move(environment.image),
+                                         .up = scene.camera.up,
+                                         .file = options.environment_map,
+                                         .color_space = environment.color_space};
   }
 
   // Every component exists before the (possibly long) build, so mistyped names and --set keys
-  // fail fast.
+  // fail fast. -l, -m, -H (and the scene's max_depth) reach the integrator as its parameters.
+  add_integrator_aliases(options, scene, settings.integrator, params);
   const std::unique_ptr<Integrator> integrator =
       integrator_registry().create(settings.integrator, params);
   const std::unique_ptr<Sampler> sampler = create_sampler(settings.sampler, settings.seed);
   sampler->set_sample_count(settings.spp);
   check_component_params(
       params, {{"accelerator", settings.accelerator}, {"integrator", settings.integrator}});
+  record_integrator_aliases(params, settings);
   const Camera camera = render_camera(scene, options, settings);
 
   RenderRecord record;
   record.scene = scene_path.string();
   record.command_line = options.command_line;
-  if (environment) {
-    record.environment = options.environment_map;
-    record.environment_space = environment->color_space;
+  if (scene.environment) {
+    record.environment = scene.environment->file;
+    record.environment_space = scene.environment->color_space;
   }
   accel->build(scene.geometry);
   record.build_ms = accel->stats().build_ms;
@@ -125,13 +132,9 @@ int run_render_command(const RenderOptions& options) {
       .camera = camera,
       .sampler_prototype = *sampler,
       .spp = settings.spp,
-      .light_samples = settings.light_samples,
-      .max_depth = settings.max_depth,
-      .hemisphere_sampling = settings.hemisphere_sampling,
       .adaptive_batch = settings.adaptive_batch,
       .adaptive_tolerance = settings.adaptive_tolerance,
       .progress = &progress,
-      .environment = environment ? &environment->image : nullptr,
   };
   record.render_ms = time_ms([&] { integrator->render(context, film); });
   progress.done();

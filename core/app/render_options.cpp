@@ -135,7 +135,6 @@ RenderSettings resolve_render_settings(const RenderOptions& options, const Scene
     s.adaptive_batch = options.adaptive->first;
     s.adaptive_tolerance = static_cast<float>(options.adaptive->second);
   }
-  s.hemisphere_sampling = options.hemisphere_sampling;
   return s;
 }
 

@@ -12,6 +12,7 @@
 #include "color/output_plan.h"
 #include "core/param_set.h"
 #include "core/scene.h"
+#include "integrators/integrator_defaults.h"
 
 namespace prism {
 
@@ -24,8 +25,6 @@ inline constexpr const char* kDefaultIntegrator = "path";
 inline constexpr int kDefaultWidth = 480;
 inline constexpr int kDefaultHeight = 360;
 inline constexpr int kDefaultSpp = 16;
-inline constexpr int kDefaultLightSamples = 1;
-inline constexpr int kDefaultMaxDepth = 5;
 inline constexpr uint64_t kDefaultSeed = 0;
 
 /// Bounds on option values: large enough for any real render, small enough that counters cannot
@@ -34,8 +33,6 @@ inline constexpr uint64_t kDefaultSeed = 0;
 inline constexpr int kMaxResolution = 16384;
 inline constexpr long long kMaxPixels = 1LL << 25;  // 8K UHD (7680 x 4320) fits
 inline constexpr int kMaxSpp = 1 << 20;
-inline constexpr int kMaxLightSamples = 1 << 16;
-inline constexpr int kMaxDepth = 1024;
 inline constexpr int kMaxThreads = 4096;
 
 /// What the user typed for `prism render`. Unset optionals fall back to the scene file's
@@ -78,12 +75,14 @@ struct RenderSettings {
   int width = kDefaultWidth;
   int height = kDefaultHeight;
   int spp = kDefaultSpp;
+  /// -l and -m as recorded in the output files: resolve_render_settings() gives the flags (for
+  /// max_depth, else the scene file) or the defaults; record_integrator_aliases() then the
+  /// values of the integrator's parameters where it has them.
   int light_samples = kDefaultLightSamples;
   int max_depth = kDefaultMaxDepth;
   uint64_t seed = kDefaultSeed;
   int adaptive_batch = 0;  ///< 0: adaptive sampling off
   float adaptive_tolerance = 0.05f;
-  bool hemisphere_sampling = false;
 };
 
 /// Checks every option value that does not depend on the scene: ranges, finite numbers, features

@@ -9,8 +9,7 @@
 
 namespace prism {
 
-LightSet::LightSet(const Scene& scene, const Image* environment, const Vec3& environment_up)
-    : scene_(scene) {
+LightSet::LightSet(const Scene& scene) : scene_(scene) {
   const SceneGeometry& geometry = scene.geometry;
   const Bounds3 bounds = geometry.bounds();
   float radius = 1.0f;
@@ -35,8 +34,9 @@ LightSet::LightSet(const Scene& scene, const Image* environment, const Vec3& env
         break;
     }
   }
-  if (environment) {
-    lights_.push_back(std::make_unique<EnvironmentLight>(*environment, environment_up, radius));
+  if (scene.environment) {
+    lights_.push_back(std::make_unique<EnvironmentLight>(scene.environment->image,
+                                                         scene.environment->up, radius));
   }
   mesh_light_.assign(geometry.meshes.size(), -1);
   for (size_t i = 0; i < geometry.meshes.size(); ++i) {

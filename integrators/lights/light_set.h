@@ -3,7 +3,6 @@
 #include <memory>
 #include <vector>
 
-#include "core/image.h"
 #include "core/scene.h"
 #include "integrators/lights/light_source.h"
 #include "integrators/sampling/distribution.h"
@@ -11,16 +10,15 @@
 namespace prism {
 
 /// Every light of a scene, built once per render: the scene's point, spot, directional,
-/// ambient and CGL area lights, the environment map if any, plus one area light per emissive mesh
+/// ambient and CGL area lights, its environment map if any (Scene::environment, an
+/// EnvironmentLight with its pole along the map's `up`), plus one area light per emissive mesh
 /// and per emissive sphere. An area light marked `duplicates_emissive_mesh` is left out: its
 /// emissive mesh is the light (visible to rays, sampled by area), so the energy is counted once.
 /// Chooses lights in proportion to power. Keeps references into `scene`, which must outlive it.
 /// Thread-safe.
 class LightSet {
  public:
-  /// `environment`, if not null, adds an EnvironmentLight with its pole at `environment_up`.
-  explicit LightSet(const Scene& scene, const Image* environment = nullptr,
-                    const Vec3& environment_up = Vec3(0.0f, 1.0f, 0.0f));
+  explicit LightSet(const Scene& scene);
 
   const std::vector<std::unique_ptr<LightSource>>& lights() const { return lights_; }
   bool empty() const { return lights_.empty(); }

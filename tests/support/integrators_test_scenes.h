@@ -113,6 +113,8 @@ inline Scene cornell_box(const CornellOptions& o = {}) {
 struct TestRender {
   int width = 24, height = 24;
   int spp = 16;
+  /// Given to the integrator as the flags -l, -m, -H give them: aliases of `<name>.light_samples`,
+  /// `<name>.max_depth` and `<name>.hemisphere`, read by the integrators that have them.
   int light_samples = 1;
   int max_depth = 5;
   bool hemisphere = false;
@@ -121,15 +123,28 @@ struct TestRender {
   uint64_t seed = 1;
   std::string sampler = "independent";
   std::string accelerator = "bvh";
-  const Image* environment = nullptr;
 };
+
+/// Gives `scene` the environment map `image`, its row 0 at the pole along the scene camera's
+/// up, as the render driver does for -e.
+inline void set_environment(Scene& scene, Image image) {
+  SceneEnvironment environment;
+  environment.image = std::move(image);
+  environment.up = scene.camera.up;
+  scene.environment = std::move(environment);
+}
 
 /// Renders `scene` with integrator `name`; fails the test if any sample was not finite.
 inline Image render_scene(const Scene& scene, const std::string& name, const ParamSet& params,
                           const TestRender& r) {
   const std::unique_ptr<Accelerator> accel = accelerator_registry().create(r.accelerator, params);
   accel->build(scene.geometry);
-  const std::unique_ptr<Integrator> integrator = integrator_registry().create(name, params);
+  ParamSet integrator_params = params;
+  integrator_params.set_alias(name + ".light_samples", std::to_string(r.light_samples), "-l");
+  integrator_params.set_alias(name + ".max_depth", std::to_string(r.max_depth), "-m");
+  if (r.hemisphere) integrator_params.set_alias(name + ".hemisphere", "true", "-H");
+  const std::unique_ptr<Integrator> integrator =
+      integrator_registry().create(name, integrator_params);
   const std::unique_ptr<Sampler> sampler = create_sampler(r.sampler, r.seed);
   Camera camera = scene.camera;
   camera.fit_to_aspect(float(r.width) / float(r.height));
@@ -140,12 +155,8 @@ inline Image render_scene(const Scene& scene, const std::string& name, const Par
       .camera = camera,
       .sampler_prototype = *sampler,
       .spp = r.spp,
-      .light_samples = r.light_samples,
-      .max_depth = r.max_depth,
-      .hemisphere_sampling = r.hemisphere,
       .adaptive_batch = r.adaptive_batch,
       .adaptive_tolerance = r.adaptive_tolerance,
-      .environment = r.environment,
   };
   integrator->render(context, film);
   EXPECT_EQ(film.non_finite_samples(), 0u) << name << " produced NaN or infinite samples";
