@@ -28,7 +28,7 @@ struct ColorOptions {
 /// The active OpenColorIO configuration and the processors prism needs from it. Every colour
 /// conversion in prism goes through this class. Construction validates every name and throws
 /// Error(kUsage) listing what the config offers; after that, methods are thread-safe.
-/// How roles, fallbacks and studio configs ($OCIO) are handled: see color_pipeline.cpp.
+/// How configs are chosen and studio configs ($OCIO) are used: README.md, "Colour".
 class ColorPipeline {
  public:
   explicit ColorPipeline(const ColorOptions& options);

@@ -6,7 +6,7 @@
 
 namespace prism {
 
-/// The homework's "sample rate" picture of an adaptive render: each pixel's sample count divided
+/// The "sample rate" picture of an adaptive render: each pixel's sample count divided
 /// by the largest count, colour-mapped from blue (few samples) through green to red (many).
 /// Returns display-ready RGB values in [0, 1] (write them through a Raw view), or nothing when
 /// `image` has no "sampleCount.Y" channel.

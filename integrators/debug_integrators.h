@@ -4,7 +4,7 @@
 
 namespace prism {
 
-/// The homework's normal shading: the shading normal n of the first hit as the colour
+/// Normal shading: the shading normal n of the first hit as the colour
 /// 0.5 * n + 0.5 (world space); black where the ray escapes.
 class NormalsIntegrator final : public PixelIntegrator {
  public:

@@ -4,7 +4,7 @@
 
 namespace prism {
 
-/// Zero bounce plus one bounce (the homework's direct illumination): emission seen directly,
+/// Direct illumination, zero bounce plus one bounce: emission seen directly,
 /// plus light reflected once, estimated by light importance sampling (default; every light,
 /// direct.light_samples samples per non-delta light) or by uniform hemisphere sampling
 /// (direct.hemisphere). At a purely specular surface the one bounce follows the specular

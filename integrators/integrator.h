@@ -58,7 +58,7 @@ class PixelEstimator {
 /// PixelEstimator whose li() is called once per camera ray.
 /// The tile loop also runs adaptive sampling (RenderContext::adaptive_batch > 0): after every
 /// batch of B samples of a pixel it stops once 1.96 sigma / sqrt(n) <= tolerance * mu for the
-/// illuminance (luminance) of the samples taken, as the homework defines it.
+/// illuminance (luminance) of the samples taken.
 class PixelIntegrator : public Integrator {
  public:
   void render(const RenderContext& context, Film& film) const final;

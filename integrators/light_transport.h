@@ -62,12 +62,12 @@ struct ShadingPoint {
   bool unoccluded(const Accelerator& accel, const Vec3& wi_world, float distance) const;
 };
 
-/// The homework's one-bounce estimator at `sp` by light importance sampling: every light,
+/// Light arriving at `sp` directly from the lights, by light importance sampling: every light,
 /// `light_samples` samples for each non-delta light and one for each delta light.
 Rgb estimate_direct_lights(const ShadingPoint& sp, Sampler& sampler, const RenderContext& context,
                            const ShadingContext& shading, int light_samples);
 
-/// The homework's one-bounce estimator at `sp` by uniform hemisphere sampling (on wo's side):
+/// Light arriving at `sp` directly from emitters, by uniform hemisphere sampling (on wo's side):
 /// light_samples x (number of lights, at least 1) rays; light arrives only from emissive
 /// geometry hit and from infinite lights on escape.
 Rgb estimate_direct_hemisphere(const ShadingPoint& sp, Sampler& sampler,

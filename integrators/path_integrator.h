@@ -9,14 +9,14 @@ namespace prism {
 ///   takes.
 /// - mis (default true): light sampling and BSDF sampling combined by multiple importance
 ///   sampling (power heuristic), lights chosen by power, light_samples NEE samples per vertex;
-///   false reproduces the homework's estimator: at every vertex the one-bounce estimate of
+///   false gives the estimator without MIS: at every vertex the one-bounce estimate of
 ///   every light (or by hemisphere sampling with hemisphere=true), emission found by
 ///   BSDF-sampled rays counted only after specular bounces.
 /// - accumulate (default true): the sum of bounces 0..max_depth; false gives only bounce
 ///   max_depth (light that scattered exactly max_depth times).
 /// - rr (default true), rr_depth (default 3, or 1 with rr_probability), rr_probability
 ///   (default 0: continuation probability from the path throughput; in (0,1]: that fixed
-///   continuation probability, as the homework does).
+///   continuation probability).
 /// - microfacet, light_samples, hemisphere: see LightTransportSettings.
 class PathIntegrator final : public PixelIntegrator {
  public:

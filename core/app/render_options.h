@@ -21,7 +21,8 @@ inline constexpr const char* kDefaultAccelerator = "bvh";
 inline constexpr const char* kDefaultSampler = "sobol";
 /// Used when neither --integrator nor the scene file names one.
 inline constexpr const char* kDefaultIntegrator = "path";
-/// The homework's image size, used when neither -r nor the scene file gives one.
+/// 480 x 360 (the size CS184 scenes are made for), used when neither -r nor the scene file
+/// gives one.
 inline constexpr int kDefaultWidth = 480;
 inline constexpr int kDefaultHeight = 360;
 inline constexpr int kDefaultSpp = 16;

@@ -11,7 +11,7 @@ namespace prism {
 
 /// Choices the scene format does not carry.
 struct BsdfOptions {
-  MicrofacetModel microfacet = MicrofacetModel::kBeckmann;  ///< the homework's distribution
+  MicrofacetModel microfacet = MicrofacetModel::kBeckmann;  ///< of rough conductors
 };
 
 /// An emitter's BSDF: it reflects nothing.

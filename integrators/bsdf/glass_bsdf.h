@@ -24,7 +24,7 @@ class GlassBsdf final : public Bsdf {
   float ior_;
 };
 
-/// Specular refraction only, as the homework defines it: no reflected lobe and no Fresnel
+/// Specular refraction only: no reflected lobe and no Fresnel
 /// weighting (everything is transmitted, tinted by `transmittance`); total internal reflection
 /// absorbs. Same frame convention as GlassBsdf.
 class RefractionBsdf final : public Bsdf {

@@ -5,7 +5,7 @@
 
 namespace prism {
 
-/// Rough conductor (the homework's microfacet BRDF): f = F(wo.h) G(wo, wi) D(h) /
+/// Rough conductor: f = F(wo.h) G(wo, wi) D(h) /
 /// (4 |cos_o| |cos_i|) with conductor Fresnel of complex index eta + i k, reflecting on the side
 /// of wo. Sampling draws h from D(h) cos(theta_h) and reflects wo about it.
 class MicrofacetBsdf final : public Bsdf {

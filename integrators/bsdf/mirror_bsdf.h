@@ -4,8 +4,7 @@
 
 namespace prism {
 
-/// Perfect specular reflection with a constant reflectance (the homework's mirror: no Fresnel
-/// term).
+/// Perfect specular reflection with a constant reflectance (no Fresnel term).
 class MirrorBsdf final : public Bsdf {
  public:
   explicit MirrorBsdf(const Rgb& reflectance) : reflectance_(reflectance) {}

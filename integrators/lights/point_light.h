@@ -43,8 +43,8 @@ class DirectionalLight final : public LightSource {
   float scene_radius_;
 };
 
-/// Uniform radiance `color` from the hemisphere of directions about `up` (the homework's
-/// ambient "sky"); seen by rays that escape upward. Sampled uniformly over that hemisphere.
+/// Uniform radiance `color` from the hemisphere of directions about `up` (an ambient
+/// "sky"); seen by rays that escape upward. Sampled uniformly over that hemisphere.
 class AmbientLight final : public LightSource {
  public:
   AmbientLight(const Light& light, float scene_radius);
