@@ -250,6 +250,43 @@ TEST(ColorPipeline, SceneColoursConvertToTheWorkingSpace) {
   EXPECT_EQ(e.kind(), ErrorKind::kUsage);
 }
 
+TEST(ColorPipeline, ConvertImageConvertsColourChannelsToTheWorkingSpaceOnly) {
+  OcioEnv ocio_env;
+  const ColorPipeline pipeline(ColorOptions{});
+  Image image;
+  image.width = 2;
+  image.height = 1;
+  image.channel_names = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "Z"};
+  image.pixels = {0.9f, 0.2f, 0.05f, 0.1f, 0.5f, 0.3f, 4.0f,
+                  0.0f, 1.0f, 0.25f, 2.0f, 0.0f, 0.7f, 9.0f};
+  Image converted = image;
+  pipeline.convert_image_to_working(converted, "ACEScg");
+  for (int x = 0; x < 2; ++x) {
+    for (int first : {0, 3}) {
+      const Rgb in(image.at(x, 0, first), image.at(x, 0, first + 1), image.at(x, 0, first + 2));
+      const Rgb expected = pipeline.convert(in, "ACEScg", pipeline.working_space());
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(converted.at(x, 0, first + c), expected[c], 1e-5f) << x << " " << first + c;
+      }
+    }
+    EXPECT_EQ(converted.at(x, 0, 6), image.at(x, 0, 6)) << "depth is data, not colour";
+  }
+  ASSERT_NE(converted.pixels, image.pixels);
+
+  // From the working space itself (by role): nothing changes.
+  Image same = image;
+  pipeline.convert_image_to_working(same, "scene_linear");
+  EXPECT_EQ(same.pixels, image.pixels);
+
+  try {
+    pipeline.convert_image_to_working(same, "Not A Space");
+    ADD_FAILURE() << "an unknown space was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
+    EXPECT_NE(std::string(e.what()).find("Not A Space"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ColorPipeline, OutputConversionTouchesColourLayersOnly) {
   OcioEnv ocio_env;
   ColorOptions options;
@@ -301,6 +338,16 @@ TEST(ColorPipeline, ChromaticitiesFollowTheOutputSpace) {
   EXPECT_EQ(chroma("ACES2065-1"), ap0);
   EXPECT_EQ(chroma("Linear Rec.2020"), rec2020);
   EXPECT_EQ(chroma("ACEScct"), std::nullopt);  // a log encoding: no linear primaries to derive
+}
+
+TEST(ColorPipeline, FindColorSpaceResolvesNamesAliasesAndRolesOfTheConfig) {
+  OcioEnv ocio_env;
+  const ColorPipeline pipeline(ColorOptions{});
+  EXPECT_EQ(pipeline.find_color_space("ACEScg"), "ACEScg");
+  EXPECT_EQ(pipeline.find_color_space("lin_ap1"), "ACEScg");
+  EXPECT_EQ(pipeline.find_color_space("scene_linear"), "Linear Rec.709 (sRGB)");
+  EXPECT_EQ(pipeline.find_color_space("Studio AP1"), std::nullopt);
+  EXPECT_EQ(pipeline.find_color_space(""), std::nullopt);
 }
 
 TEST(ColorPipeline, UnknownNamesListWhatTheConfigOffers) {
