@@ -7,9 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "color/color_pipeline.h"
 #include "color/image_output.h"
-#include "core/error.h"
 #include "tests/support/app_test_helpers.h"
 #include "tests/support/test_support.h"
 
@@ -152,42 +150,6 @@ TEST(AppConvert, MissingOutputFolderIsExit3AndWritesNothing) {
   expect_one_line_error(r, 3, {target.string(), "does not exist"});
   EXPECT_FALSE(std::filesystem::exists(target.parent_path()));
   EXPECT_TRUE(dir_entries(dirs.out).empty());
-}
-
-TEST(ColorConvertImage, ConvertsColourChannelsToTheWorkingSpaceOnly) {
-  const ColorPipeline pipeline(ColorOptions{});
-  Image image;
-  image.width = 2;
-  image.height = 1;
-  image.channel_names = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "Z"};
-  image.pixels = {0.9f, 0.2f, 0.05f, 0.1f, 0.5f, 0.3f, 4.0f,
-                  0.0f, 1.0f, 0.25f, 2.0f, 0.0f, 0.7f, 9.0f};
-  Image converted = image;
-  pipeline.convert_image_to_working(converted, "ACEScg");
-  for (int x = 0; x < 2; ++x) {
-    for (int first : {0, 3}) {
-      const Rgb in(image.at(x, 0, first), image.at(x, 0, first + 1), image.at(x, 0, first + 2));
-      const Rgb expected = pipeline.convert(in, "ACEScg", pipeline.working_space());
-      for (int c = 0; c < 3; ++c) {
-        EXPECT_NEAR(converted.at(x, 0, first + c), expected[c], 1e-5f) << x << " " << first + c;
-      }
-    }
-    EXPECT_EQ(converted.at(x, 0, 6), image.at(x, 0, 6)) << "depth is data, not colour";
-  }
-  ASSERT_NE(converted.pixels, image.pixels);
-
-  // From the working space itself (by role): nothing changes.
-  Image same = image;
-  pipeline.convert_image_to_working(same, "scene_linear");
-  EXPECT_EQ(same.pixels, image.pixels);
-
-  try {
-    pipeline.convert_image_to_working(same, "Not A Space");
-    ADD_FAILURE() << "an unknown space was accepted";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
-    EXPECT_NE(std::string(e.what()).find("Not A Space"), std::string::npos) << e.what();
-  }
 }
 
 }  // namespace

@@ -13,7 +13,6 @@
 
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
-#include "core/app/environment_map.h"
 #include "core/error.h"
 #include "tests/support/app_test_helpers.h"
 #include "tests/support/test_support.h"
@@ -34,11 +33,6 @@ const std::string kSphereScene = R"({
   "materials": [{"name": "grey", "type": "diffuse", "reflectance": [0.8, 0.5, 0.25]}],
   "spheres": [{"center": [0, 0, 0], "radius": 1, "material": "grey"}]
 })";
-
-ColorOptions bundled_config() {
-  unsetenv("OCIO");  // the bundled config, whatever the caller's environment
-  return {};
-}
 
 /// A width x height RGB image whose pixel (x, y) is color(x, y).
 Image rgb_image(int width, int height, const std::function<Rgb(int, int)>& color) {
@@ -62,18 +56,6 @@ void write_env(const fs::path& path, const Image& image, const std::string& outp
   options.output_space = output_space;
   const ColorPipeline pipeline(options);
   write_exr(path, image, {}, pipeline, ExrOptions{"half", "zip"});
-}
-
-/// A Portable Float Map (colour, little-endian) holding `values` (width * height * 3, top row
-/// first); PFM stores rows bottom to top. The one float format that needs no library to write
-/// and may hold NaN and infinity.
-void write_pfm(const fs::path& path, int width, int height, const std::vector<float>& values) {
-  std::ofstream out(path, std::ios::binary);
-  out << "PF\n" << width << " " << height << "\n-1.0\n";
-  for (int y = height - 1; y >= 0; --y) {
-    out.write(reinterpret_cast<const char*>(values.data() + size_t(y) * width * 3),
-              std::streamsize(sizeof(float) * width * 3));
-  }
 }
 
 class AppEnvironment : public testing::Test {
@@ -271,59 +253,6 @@ TEST_F(AppEnvironment, BadFilesAreOneLineErrorsNamingTheFile) {
     expect_one_line_error(render(env), 2, mentions);
     expect_nothing_written();
   }
-}
-
-TEST(EnvironmentMapLoader, RadianceHdrIsReadAsSceneLinearWithoutWarning) {
-  // OpenImageIO labels .hdr (and EXR) files "linear", which names no primaries: scene_linear.
-  const TestDirs dirs("environment_loader_hdr");
-  const fs::path path = dirs.in / "sky.hdr";
-  {
-    // Flat RGBE scanlines (width < 8 is never run-length encoded): mantissas 32, 64, 128 with
-    // exponent byte 130 decode to 0.5, 1, 2.
-    std::ofstream out(path, std::ios::binary);
-    out << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
-    for (int i = 0; i < 8; ++i) out << char(32) << char(64) << char(128) << char(130);
-  }
-  const ColorPipeline pipeline(bundled_config());
-  const EnvironmentMap map = load_environment_map(path, pipeline);
-  EXPECT_EQ(map.color_space, "Linear Rec.709 (sRGB)");
-  EXPECT_EQ(map.space_rule, "scene_linear");
-  EXPECT_TRUE(map.warnings.empty()) << map.warnings.front();
-  ASSERT_EQ(map.image.width, 4);
-  ASSERT_EQ(map.image.height, 2);
-  for (int y = 0; y < 2; ++y) {
-    for (int x = 0; x < 4; ++x) {
-      EXPECT_EQ(Rgb(map.image.at(x, y, 0), map.image.at(x, y, 1), map.image.at(x, y, 2)),
-                kRadiance);
-    }
-  }
-}
-
-TEST(EnvironmentMapLoader, PfmKeepsItsValuesAndWarnsAboutItsEncodingLabel) {
-  const TestDirs dirs("environment_loader_pfm");
-  std::vector<float> values(4 * 2 * 3);
-  for (size_t i = 0; i < values.size(); ++i) values[i] = 0.25f * float(i);
-  write_pfm(dirs.in / "ramp.pfm", 4, 2, values);
-  const ColorPipeline pipeline(bundled_config());
-  const EnvironmentMap map = load_environment_map(dirs.in / "ramp.pfm", pipeline);
-  EXPECT_EQ(map.color_space, "Linear Rec.709 (sRGB)");
-  ASSERT_EQ(map.image.width, 4);
-  ASSERT_EQ(map.image.height, 2);
-  ASSERT_EQ(map.image.channel_names, (std::vector<std::string>{"R", "G", "B"}));
-  EXPECT_EQ(map.image.pixels, values);  // top row first, no conversion
-  // OpenImageIO labels PNM files "Rec709" (an encoded space the config does not have): the
-  // values are used as they are, with a warning; the map is 2:1, so there is only that one.
-  ASSERT_EQ(map.warnings.size(), 1u);
-  EXPECT_NE(map.warnings[0].find("oiio:ColorSpace 'Rec709'"), std::string::npos) << map.warnings[0];
-}
-
-TEST(ColorPipelineFindColorSpace, ResolvesNamesAliasesAndRolesOfTheConfig) {
-  const ColorPipeline pipeline(bundled_config());
-  EXPECT_EQ(pipeline.find_color_space("ACEScg"), "ACEScg");
-  EXPECT_EQ(pipeline.find_color_space("lin_ap1"), "ACEScg");
-  EXPECT_EQ(pipeline.find_color_space("scene_linear"), "Linear Rec.709 (sRGB)");
-  EXPECT_EQ(pipeline.find_color_space("Studio AP1"), std::nullopt);
-  EXPECT_EQ(pipeline.find_color_space(""), std::nullopt);
 }
 
 }  // namespace

@@ -15,7 +15,9 @@
 namespace prism {
 namespace {
 
-// Runs a test with $OCIO as the test sets it (unset by default) and puts it back afterwards.
+// Runs a test with $OCIO as the test sets it (unset by default) and puts it back afterwards:
+// every test starts with one. (A fixture would have to be named ColorPipeline, after the file,
+// and would hide the class under test.)
 class OcioEnv {
  public:
   OcioEnv() {
@@ -33,11 +35,6 @@ class OcioEnv {
 
  private:
   std::optional<std::string> saved_;
-};
-
-class ColorPipelineTest : public ::testing::Test {
- protected:
-  OcioEnv env_;
 };
 
 // Published linear Rec.709 (sRGB) -> ACEScg matrix: Rec.709 primaries and D65 white
@@ -97,7 +94,8 @@ Error expect_error(F&& f) {
   return Error(ErrorKind::kInternal, "no error");
 }
 
-TEST_F(ColorPipelineTest, BundledConfigIsTheDefault) {
+TEST(ColorPipeline, BundledConfigIsTheDefault) {
+  OcioEnv ocio_env;
   ColorPipeline pipeline({});
   EXPECT_EQ(pipeline.config_source(), "bundled");
   EXPECT_EQ(pipeline.config_name(), "prism-default-v1");
@@ -113,7 +111,8 @@ TEST_F(ColorPipelineTest, BundledConfigIsTheDefault) {
   EXPECT_EQ(hash.find_first_not_of("0123456789abcdef", 5), std::string::npos) << hash;
 }
 
-TEST_F(ColorPipelineTest, EmbeddedConfigMatchesTheSourceFile) {
+TEST(ColorPipeline, EmbeddedConfigMatchesTheSourceFile) {
+  OcioEnv ocio_env;
   const std::string path = std::string(PRISM_SOURCE_DIR) + "/color/ocio/config.ocio";
   std::ifstream in(path, std::ios::binary);
   ASSERT_TRUE(in) << path;
@@ -126,7 +125,8 @@ TEST_F(ColorPipelineTest, EmbeddedConfigMatchesTheSourceFile) {
   EXPECT_EQ(ColorPipeline(from_file).config_source(), path);
 }
 
-TEST_F(ColorPipelineTest, Rec709ToAcescgMatchesThePublishedMatrix) {
+TEST(ColorPipeline, Rec709ToAcescgMatchesThePublishedMatrix) {
+  OcioEnv ocio_env;
   const glm::dmat3 derived = derive_rec709_to_acescg();
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(derived[j][i], kRec709ToAcescg[i][j], 1e-9);
@@ -154,7 +154,8 @@ TEST_F(ColorPipelineTest, Rec709ToAcescgMatchesThePublishedMatrix) {
   }
 }
 
-TEST_F(ColorPipelineTest, StandardViewEncodesMiddleGreyAsSrgb) {
+TEST(ColorPipeline, StandardViewEncodesMiddleGreyAsSrgb) {
+  OcioEnv ocio_env;
   ColorPipeline pipeline({});
   EXPECT_NEAR(pipeline.working_to_display(Rgb(0.18f)).x, 0.4613561, 1e-5);
   for (float v : {0.0f, 0.001f, 0.05f, 0.5f, 1.0f}) {
@@ -177,7 +178,8 @@ TEST_F(ColorPipelineTest, StandardViewEncodesMiddleGreyAsSrgb) {
   EXPECT_NEAR(display.at(1, 0, 2), srgb_encode(0.36), 2e-5);
 }
 
-TEST_F(ColorPipelineTest, AcesViewToneMapsAndRawViewPassesThrough) {
+TEST(ColorPipeline, AcesViewToneMapsAndRawViewPassesThrough) {
+  OcioEnv ocio_env;
   ColorOptions aces;
   aces.view = "ACES 1.0 - SDR Video";
   ColorPipeline pipeline(aces);
@@ -193,7 +195,8 @@ TEST_F(ColorPipelineTest, AcesViewToneMapsAndRawViewPassesThrough) {
   EXPECT_FLOAT_EQ(ColorPipeline(raw).working_to_display(Rgb(0.18f, 0.3f, 2.0f)).z, 2.0f);
 }
 
-TEST_F(ColorPipelineTest, LookChangesSaturatedColoursOnly) {
+TEST(ColorPipeline, LookChangesSaturatedColoursOnly) {
+  OcioEnv ocio_env;
   ColorOptions with_look;
   with_look.view = "ACES 1.0 - SDR Video";
   with_look.look = "ACES 1.3 Reference Gamut Compression";
@@ -209,7 +212,8 @@ TEST_F(ColorPipelineTest, LookChangesSaturatedColoursOnly) {
   EXPECT_GT(std::abs(da.x - db.x) + std::abs(da.y - db.y) + std::abs(da.z - db.z), 1e-3);
 }
 
-TEST_F(ColorPipelineTest, SceneColoursConvertToTheWorkingSpace) {
+TEST(ColorPipeline, SceneColoursConvertToTheWorkingSpace) {
+  OcioEnv ocio_env;
   Scene scene;
   Material m;
   m.reflectance = {0.8f, 0.1f, 0.1f};
@@ -246,7 +250,45 @@ TEST_F(ColorPipelineTest, SceneColoursConvertToTheWorkingSpace) {
   EXPECT_EQ(e.kind(), ErrorKind::kUsage);
 }
 
-TEST_F(ColorPipelineTest, OutputConversionTouchesColourLayersOnly) {
+TEST(ColorPipeline, ConvertImageConvertsColourChannelsToTheWorkingSpaceOnly) {
+  OcioEnv ocio_env;
+  const ColorPipeline pipeline(ColorOptions{});
+  Image image;
+  image.width = 2;
+  image.height = 1;
+  image.channel_names = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "Z"};
+  image.pixels = {0.9f, 0.2f, 0.05f, 0.1f, 0.5f, 0.3f, 4.0f,
+                  0.0f, 1.0f, 0.25f, 2.0f, 0.0f, 0.7f, 9.0f};
+  Image converted = image;
+  pipeline.convert_image_to_working(converted, "ACEScg");
+  for (int x = 0; x < 2; ++x) {
+    for (int first : {0, 3}) {
+      const Rgb in(image.at(x, 0, first), image.at(x, 0, first + 1), image.at(x, 0, first + 2));
+      const Rgb expected = pipeline.convert(in, "ACEScg", pipeline.working_space());
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(converted.at(x, 0, first + c), expected[c], 1e-5f) << x << " " << first + c;
+      }
+    }
+    EXPECT_EQ(converted.at(x, 0, 6), image.at(x, 0, 6)) << "depth is data, not colour";
+  }
+  ASSERT_NE(converted.pixels, image.pixels);
+
+  // From the working space itself (by role): nothing changes.
+  Image same = image;
+  pipeline.convert_image_to_working(same, "scene_linear");
+  EXPECT_EQ(same.pixels, image.pixels);
+
+  try {
+    pipeline.convert_image_to_working(same, "Not A Space");
+    ADD_FAILURE() << "an unknown space was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
+    EXPECT_NE(std::string(e.what()).find("Not A Space"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ColorPipeline, OutputConversionTouchesColourLayersOnly) {
+  OcioEnv ocio_env;
   ColorOptions options;
   options.output_space = "ACEScg";
   ColorPipeline pipeline(options);
@@ -277,7 +319,8 @@ TEST_F(ColorPipelineTest, OutputConversionTouchesColourLayersOnly) {
   EXPECT_EQ(triples[1], (std::array<int, 3>{3, 4, 5}));
 }
 
-TEST_F(ColorPipelineTest, ChromaticitiesFollowTheOutputSpace) {
+TEST(ColorPipeline, ChromaticitiesFollowTheOutputSpace) {
+  OcioEnv ocio_env;
   const auto chroma = [](const std::string& output) {
     ColorOptions options;
     options.output_space = output;
@@ -297,7 +340,18 @@ TEST_F(ColorPipelineTest, ChromaticitiesFollowTheOutputSpace) {
   EXPECT_EQ(chroma("ACEScct"), std::nullopt);  // a log encoding: no linear primaries to derive
 }
 
-TEST_F(ColorPipelineTest, UnknownNamesListWhatTheConfigOffers) {
+TEST(ColorPipeline, FindColorSpaceResolvesNamesAliasesAndRolesOfTheConfig) {
+  OcioEnv ocio_env;
+  const ColorPipeline pipeline(ColorOptions{});
+  EXPECT_EQ(pipeline.find_color_space("ACEScg"), "ACEScg");
+  EXPECT_EQ(pipeline.find_color_space("lin_ap1"), "ACEScg");
+  EXPECT_EQ(pipeline.find_color_space("scene_linear"), "Linear Rec.709 (sRGB)");
+  EXPECT_EQ(pipeline.find_color_space("Studio AP1"), std::nullopt);
+  EXPECT_EQ(pipeline.find_color_space(""), std::nullopt);
+}
+
+TEST(ColorPipeline, UnknownNamesListWhatTheConfigOffers) {
+  OcioEnv ocio_env;
   const auto error_for = [](ColorOptions options) {
     return expect_error([&] { ColorPipeline pipeline(options); });
   };
@@ -343,7 +397,8 @@ TEST_F(ColorPipelineTest, UnknownNamesListWhatTheConfigOffers) {
   EXPECT_EQ(error_for(o).kind(), ErrorKind::kUsage);
 }
 
-TEST_F(ColorPipelineTest, BadConfigFilesAreReported) {
+TEST(ColorPipeline, BadConfigFilesAreReported) {
+  OcioEnv ocio_env;
   const auto dir = test::make_temp_dir("color_badcfg");
   ColorOptions o;
   o.ocio_config = (dir / "missing.ocio").string();
@@ -384,11 +439,12 @@ colorspaces:
     isdata: true
 )";
 
-TEST_F(ColorPipelineTest, ConfigFromTheOcioVariableIsHonoured) {
+TEST(ColorPipeline, ConfigFromTheOcioVariableIsHonoured) {
+  OcioEnv ocio_env;
   const auto dir = test::make_temp_dir("color_envcfg");
   const std::string path = (dir / "test.ocio").string();
   test::write_text(path, kTestConfig);
-  env_.set(path);
+  ocio_env.set(path);
   ColorPipeline pipeline({});
   EXPECT_EQ(pipeline.config_source(), path);
   EXPECT_EQ(pipeline.config_name(), "prism-test-config");
@@ -414,7 +470,8 @@ TEST_F(ColorPipelineTest, ConfigFromTheOcioVariableIsHonoured) {
   std::filesystem::remove_all(dir);
 }
 
-TEST_F(ColorPipelineTest, MissingSceneLinearRoleNeedsAWorkingSpace) {
+TEST(ColorPipeline, MissingSceneLinearRoleNeedsAWorkingSpace) {
+  OcioEnv ocio_env;
   const auto dir = test::make_temp_dir("color_norole");
   std::string text = kTestConfig;
   text.replace(text.find("  scene_linear: Linear Rec.709\n"),
@@ -434,7 +491,8 @@ TEST_F(ColorPipelineTest, MissingSceneLinearRoleNeedsAWorkingSpace) {
 }
 
 // Linear Rec.709 under a name prism does not know is found through aces_interchange.
-TEST_F(ColorPipelineTest, Rec709SpaceIsFoundByItsTransform) {
+TEST(ColorPipeline, Rec709SpaceIsFoundByItsTransform) {
+  OcioEnv ocio_env;
   const auto dir = test::make_temp_dir("color_matrixcfg");
   const std::string path = (dir / "matrix.ocio").string();
   test::write_text(path, R"(ocio_profile_version: 2
@@ -469,7 +527,8 @@ colorspaces:
 
 // An ACES CG/studio-style config (scene_linear = ACEScg) works through $OCIO unchanged: prism
 // renders in ACEScg, writes ACEScg, and still finds linear Rec.709 for the scene colours.
-TEST_F(ColorPipelineTest, AcesStyleConfigRendersInAcescg) {
+TEST(ColorPipeline, AcesStyleConfigRendersInAcescg) {
+  OcioEnv ocio_env;
   const auto dir = test::make_temp_dir("color_acescfg");
   std::string text = bundled_color_config_text();
   const std::string role = "  scene_linear: Linear Rec.709 (sRGB)\n";
@@ -477,7 +536,7 @@ TEST_F(ColorPipelineTest, AcesStyleConfigRendersInAcescg) {
   text.replace(text.find(role), role.size(), "  scene_linear: ACEScg\n");
   const std::string path = (dir / "aces_style.ocio").string();
   test::write_text(path, text);
-  env_.set(path);
+  ocio_env.set(path);
   ColorPipeline pipeline({});
   EXPECT_EQ(pipeline.working_space(), "ACEScg");
   EXPECT_EQ(pipeline.output_space(), "ACEScg");
@@ -498,7 +557,8 @@ TEST_F(ColorPipelineTest, AcesStyleConfigRendersInAcescg) {
   std::filesystem::remove_all(dir);
 }
 
-TEST_F(ColorPipelineTest, ListingDescribesTheConfig) {
+TEST(ColorPipeline, ListingDescribesTheConfig) {
+  OcioEnv ocio_env;
   const ColorConfigListing listing = list_color_config("");
   EXPECT_EQ(listing.config_source, "bundled");
   EXPECT_EQ(listing.config_name, "prism-default-v1");

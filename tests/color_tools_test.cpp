@@ -58,7 +58,7 @@ ToolRun run(const std::string& command) {
   return result;
 }
 
-class ColorToolsTest : public ::testing::Test {
+class ColorTools : public ::testing::Test {
  protected:
   void SetUp() override {
     if (const char* v = std::getenv("OCIO")) saved_ocio_ = v;
@@ -105,7 +105,7 @@ class ColorToolsTest : public ::testing::Test {
   std::optional<std::string> saved_ocio_;
 };
 
-TEST_F(ColorToolsTest, OciocheckValidatesTheBundledConfig) {
+TEST_F(ColorTools, OciocheckValidatesTheBundledConfig) {
   const auto tool = find_tool("ociocheck");
   if (!tool) GTEST_SKIP() << "ociocheck (opencolorio-tools) not installed: skipping";
   for (const fs::path& config :
@@ -117,7 +117,7 @@ TEST_F(ColorToolsTest, OciocheckValidatesTheBundledConfig) {
   }
 }
 
-TEST_F(ColorToolsTest, EveryViewMatchesOcioconvert) {
+TEST_F(ColorTools, EveryViewMatchesOcioconvert) {
   const auto tool = find_tool("ocioconvert");
   if (!tool) GTEST_SKIP() << "ocioconvert (opencolorio-tools) not installed: skipping";
   const Image image = test_image();
@@ -147,7 +147,7 @@ TEST_F(ColorToolsTest, EveryViewMatchesOcioconvert) {
   }
 }
 
-TEST_F(ColorToolsTest, OutputSpacesMatchOcioconvert) {
+TEST_F(ColorTools, OutputSpacesMatchOcioconvert) {
   const auto tool = find_tool("ocioconvert");
   if (!tool) GTEST_SKIP() << "ocioconvert (opencolorio-tools) not installed: skipping";
   const Image image = test_image();

@@ -232,6 +232,28 @@ TEST(CoreFilm, NonFiniteAovsAreLeftOutOfTheSums) {
   EXPECT_FLOAT_EQ(image.at(0, 0, 0), 1.0f);
 }
 
+TEST(CoreFilm, MeanVarianceAndNonFiniteSamples) {
+  Film film(2, 1);
+  const float values[] = {1.0f, 2.0f, 3.0f, 6.0f};
+  for (float v : values) film.add_sample({0, 0}, Rgb(v), AovSample{Rgb(0.5f), Vec3(0, 0, 1), 2.0f});
+  film.add_sample({1, 0}, Rgb(std::nanf("")));
+  film.add_sample({1, 0}, Rgb(kInfinity));
+  film.add_sample({1, 0}, Rgb(4.0f));
+  EXPECT_EQ(film.non_finite_samples(), 2u);
+  const Image image = film.resolve();
+  EXPECT_EQ(image.count_non_finite(), 0u);
+  EXPECT_FLOAT_EQ(image.at(0, 0, 0), 3.0f);
+  // Sample variance (1 + 4 + 0 + 9) / 3 = 14/3; of the mean: / 4.
+  EXPECT_NEAR(image.at(0, 0, Film::kVarianceChannel), 14.0f / 3.0f / 4.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kAlbedoChannel), 0.5f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kNormalChannel + 2), 1.0f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kDepthChannel), 2.0f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kSampleCountChannel), 4.0f);
+  // Non-finite samples count as zero radiance.
+  EXPECT_FLOAT_EQ(image.at(1, 0, 0), 4.0f / 3.0f);
+  EXPECT_FLOAT_EQ(image.at(1, 0, Film::kSampleCountChannel), 3.0f);
+}
+
 TEST(CoreFilm, RejectsAnEmptyFilm) {
   for (const auto& [w, h] : {std::pair{0, 4}, std::pair{4, 0}, std::pair{-1, 1}}) {
     try {

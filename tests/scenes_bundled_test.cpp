@@ -80,12 +80,12 @@ void expect_cornell_box(const Scene& scene) {
   }
 }
 
-TEST(BundledScenes, DefaultSceneIsTheCornellBoxWithSpheres) {
+TEST(ScenesBundled, DefaultSceneIsTheCornellBoxWithSpheres) {
   EXPECT_EQ(default_scene_path().filename(), "cornell_spheres.json");
   EXPECT_TRUE(fs::exists(default_scene_path()));
 }
 
-TEST(BundledScenes, CornellEmpty) {
+TEST(ScenesBundled, CornellEmpty) {
   const Scene scene = load_bundled("cornell_empty.json");
   EXPECT_EQ(scene.geometry.meshes.size(), 6u);
   EXPECT_EQ(scene.geometry.triangle_count(), 12u);
@@ -93,7 +93,7 @@ TEST(BundledScenes, CornellEmpty) {
   expect_cornell_box(scene);
 }
 
-TEST(BundledScenes, CornellSpheres) {
+TEST(ScenesBundled, CornellSpheres) {
   const Scene scene = load_bundled("cornell_spheres.json");
   EXPECT_EQ(scene.geometry.triangle_count(), 12u);
   ASSERT_EQ(scene.geometry.spheres.size(), 2u);
@@ -106,7 +106,7 @@ TEST(BundledScenes, CornellSpheres) {
   expect_cornell_box(scene);
 }
 
-TEST(BundledScenes, CornellMesh) {
+TEST(ScenesBundled, CornellMesh) {
   const Scene scene = load_bundled("cornell_mesh.json");
   ASSERT_EQ(scene.geometry.meshes.size(), 7u);
   const TriangleMesh& blob = scene.geometry.meshes.back();
@@ -121,7 +121,7 @@ TEST(BundledScenes, CornellMesh) {
   expect_cornell_box(scene);
 }
 
-TEST(BundledScenes, EveryBundledSceneLoads) {
+TEST(ScenesBundled, EveryBundledSceneLoads) {
   size_t count = 0;
   for (const auto& entry : fs::directory_iterator(bundled_scene_dir())) {
     if (entry.path().extension() != ".json") continue;

@@ -119,7 +119,7 @@ void expect_close(const Vec3& actual, const Vec& expected, double scale, const c
   }
 }
 
-TEST(CameraFraming, CBbunnyMatchesTheHomeworkRule) {
+TEST(ScenesCameraFraming, CBbunnyMatchesTheHomeworkRule) {
   PRISM_REQUIRE_CS184(path, "CBbunny.dae");
   const Framing expected = framing_from_file(path);
   const Scene scene = load_scene(path);
@@ -138,7 +138,7 @@ TEST(CameraFraming, CBbunnyMatchesTheHomeworkRule) {
   expect_close(scene.camera.position, {0.0, -r, 0.75}, r, "position by hand");
 }
 
-TEST(CameraFraming, LiteralCameraUsesTheNode) {
+TEST(ScenesCameraFraming, LiteralCameraUsesTheNode) {
   PRISM_REQUIRE_CS184(path, "CBbunny.dae");
   const Framing expected = framing_from_file(path);
   SceneLoadOptions options;
@@ -157,7 +157,7 @@ TEST(CameraFraming, LiteralCameraUsesTheNode) {
 
 double tan_half(float degrees) { return std::tan(degrees * kPi / 360.0); }
 
-TEST(CameraFraming, FieldsOfViewComeFromTheFile) {
+TEST(ScenesCameraFraming, FieldsOfViewComeFromTheFile) {
   PRISM_REQUIRE_CS184(path, "CBbunny.dae");
   const Scene scene = load_scene(path);
   // xfov 49.13434 with aspect_ratio 1.777778 and no yfov.
@@ -165,7 +165,7 @@ TEST(CameraFraming, FieldsOfViewComeFromTheFile) {
   EXPECT_NEAR(tan_half(scene.camera.hfov_deg) / tan_half(scene.camera.vfov_deg), 1.777778, 1e-5);
 }
 
-TEST(CameraFraming, FitToAspectWidensNeverNarrows) {
+TEST(ScenesCameraFraming, FitToAspectWidensNeverNarrows) {
   PRISM_REQUIRE_CS184(path, "CBbunny.dae");
   const Camera original = load_scene(path).camera;
   for (const float aspect : {0.5f, 1.0f, 480.0f / 360.0f, 1.777778f, 2.5f}) {

@@ -17,7 +17,7 @@ using test::collada::kBase;
 using test::collada::line_of;
 using test::collada::replaced;
 
-TEST(ColladaErrors, MalformedXml) {
+TEST(ScenesColladaErrors, MalformedXml) {
   const std::string text = replaced(kBase, "<p>0 1 2</p>", "<p>0 1 2</q>");
   const int line = expect_input_error(text, {"malformed XML", "mismatch"});
   EXPECT_EQ(line, line_of(text, "</q>"));
@@ -26,7 +26,7 @@ TEST(ColladaErrors, MalformedXml) {
   EXPECT_EQ(expect_input_error("<?xml version=\"1.0\"?>\n<scene/>\n", {"<scene>", "COLLADA"}), 2);
 }
 
-TEST(ColladaErrors, MissingOrUnknownUpAxis) {
+TEST(ScenesColladaErrors, MissingOrUnknownUpAxis) {
   const std::string missing = replaced(kBase, "<up_axis>Z_UP</up_axis>\n", "");
   EXPECT_EQ(expect_input_error(missing, {"<asset>", "up_axis"}), line_of(missing, "<asset>"));
   const std::string unknown = replaced(kBase, "Z_UP", "W_UP");
@@ -37,7 +37,7 @@ TEST(ColladaErrors, MissingOrUnknownUpAxis) {
   EXPECT_EQ(expect_input_error(crlf, {"'W_UP'"}), line_of(unknown, "W_UP"));
 }
 
-TEST(ColladaErrors, DanglingReferencesNameTheId) {
+TEST(ScenesColladaErrors, DanglingReferencesNameTheId) {
   struct Case {
     std::string from, to;
     std::vector<std::string> needles;
@@ -74,7 +74,7 @@ TEST(ColladaErrors, DanglingReferencesNameTheId) {
   }
 }
 
-TEST(ColladaErrors, WrongCounts) {
+TEST(ScenesColladaErrors, WrongCounts) {
   const std::string wrong = replaced(kBase, "count=\"9\"", "count=\"12\"");
   EXPECT_EQ(
       expect_input_error(wrong, {"<float_array id=\"tri-pos-array\">", "count=\"12\"", "holds 9"}),
@@ -93,7 +93,7 @@ TEST(ColladaErrors, WrongCounts) {
                      {"count=\"nine\"", "integer"});
 }
 
-TEST(ColladaErrors, NonNumericAndNonFiniteNumbers) {
+TEST(ScenesColladaErrors, NonNumericAndNonFiniteNumbers) {
   const std::string array = "0 0 0 1 0 0 0 1 0";
   for (const std::string bad :
        {"zero", "nan", "NaN", "inf", "-Infinity", "1e999", "0x1p3", "1,5"}) {
@@ -110,7 +110,7 @@ TEST(ColladaErrors, NonNumericAndNonFiniteNumbers) {
   expect_input_error(replaced(kBase, "0.8 0.1 0.1 1", "0.8 -0.1 0.1 1"), {"<color>", ">= 0"});
 }
 
-TEST(ColladaErrors, IndexOutOfRange) {
+TEST(ScenesColladaErrors, IndexOutOfRange) {
   const std::string text = replaced(kBase, "<p>0 1 2</p>", "<p>0 1 7</p>");
   EXPECT_EQ(expect_input_error(text, {"index 7", "VERTEX", "out of range", "<p>"}),
             line_of(text, "<p>"));
@@ -118,7 +118,7 @@ TEST(ColladaErrors, IndexOutOfRange) {
   expect_input_error(replaced(kBase, "<p>0 1 2</p>", "<p>0 1 4294967296</p>"), {"'4294967296'"});
 }
 
-TEST(ColladaErrors, VcountAndPLengthMismatch) {
+TEST(ScenesColladaErrors, VcountAndPLengthMismatch) {
   const std::string text = replaced(kBase, "<vcount>3</vcount>", "<vcount>4</vcount>");
   EXPECT_EQ(expect_input_error(text, {"<p>", "holds 3 indices", "<vcount> needs 4"}),
             line_of(text, "<p>"));
@@ -131,7 +131,7 @@ TEST(ColladaErrors, VcountAndPLengthMismatch) {
                      {"count=\"2\"", "1 <vcount> entries"});
 }
 
-TEST(ColladaErrors, MissingVisualScene) {
+TEST(ScenesColladaErrors, MissingVisualScene) {
   const std::string no_scene =
       replaced(kBase, "<scene><instance_visual_scene url=\"#Scene\"/></scene>\n", "");
   EXPECT_EQ(expect_input_error(no_scene, {"<COLLADA>", "visual scene"}),
@@ -141,7 +141,7 @@ TEST(ColladaErrors, MissingVisualScene) {
             line_of(empty, "<scene>"));
 }
 
-TEST(ColladaErrors, SphereRadiusMustBePositive) {
+TEST(ScenesColladaErrors, SphereRadiusMustBePositive) {
   for (const std::string radius : {"-1", "0", "-0"}) {
     SCOPED_TRACE(radius);
     const std::string text =
@@ -153,7 +153,7 @@ TEST(ColladaErrors, SphereRadiusMustBePositive) {
                      {"<radius>", "'1e300'", "too large"});
 }
 
-TEST(ColladaErrors, HostileStructureFailsCleanly) {
+TEST(ScenesColladaErrors, HostileStructureFailsCleanly) {
   // Nesting far deeper than any real file.
   std::string deep;
   for (int i = 0; i < 300; ++i) deep += "<node>";
@@ -185,7 +185,7 @@ TEST(ColladaErrors, HostileStructureFailsCleanly) {
                      {"<skew>", "not supported"});
 }
 
-TEST(ColladaErrors, BadMaterialAndLightValues) {
+TEST(ScenesColladaErrors, BadMaterialAndLightValues) {
   const std::string cgl = "<extra><technique profile=\"CGL\">";
   const std::string effect = "<effect id=\"red-effect\">";
   expect_input_error(replaced(kBase, effect, effect + cgl + "<velvet/></technique></extra>"),

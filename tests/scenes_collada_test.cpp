@@ -31,7 +31,7 @@ using test::collada::load_text;
 using test::collada::read_file;
 using test::collada::replaced;
 
-TEST(ColladaLoader, BaseDocumentLoads) {
+TEST(ScenesCollada, BaseDocumentLoads) {
   const Scene scene = load_text(kBase);
   ASSERT_EQ(scene.geometry.meshes.size(), 1u);
   EXPECT_EQ(scene.geometry.meshes[0].name, "n/tri/mat");
@@ -104,7 +104,7 @@ XmlCounts count_from_xml(const std::filesystem::path& path) {
   return counts;
 }
 
-TEST(ColladaLoader, EverySharedFileMatchesItsXml) {
+TEST(ScenesCollada, EverySharedFileMatchesItsXml) {
   const auto names = test::cs184_scene_names();
   if (names.empty()) GTEST_SKIP() << "../shared/scenes/cs184 absent";
   // Sizes stated in docs/cs184-collada.md (and checked by hand against vcount sums).
@@ -139,7 +139,7 @@ TEST(ColladaLoader, EverySharedFileMatchesItsXml) {
 
 // The Cornell floor winds downward while its normals point up into the box; the loader keeps
 // both, and the shared surface_at turns the geometric normal to the shading side.
-TEST(ColladaLoader, CornellFloorNormalsVersusWinding) {
+TEST(ScenesCollada, CornellFloorNormalsVersusWinding) {
   PRISM_REQUIRE_CS184(path, "CBempty.dae");
   const Scene scene = load_scene(path);
   const auto& meshes = scene.geometry.meshes;
@@ -182,7 +182,7 @@ double emitted_power(const Scene& scene) {
   return power;
 }
 
-TEST(ColladaLoader, AreaLightDuplicatingTheEmissiveQuadIsFlagged) {
+TEST(ScenesCollada, AreaLightDuplicatingTheEmissiveQuadIsFlagged) {
   for (const char* name : {"CBspheres.dae", "CBspheres_lambertian.dae", "CBbunny.dae"}) {
     SCOPED_TRACE(name);
     PRISM_REQUIRE_CS184(path, name);
@@ -214,7 +214,7 @@ TEST(ColladaLoader, AreaLightDuplicatingTheEmissiveQuadIsFlagged) {
 
 // CBempty lights its box with a point light (no CGL area light) besides the emissive quad:
 // nothing there is an area light, so nothing may be flagged.
-TEST(ColladaLoader, CBemptyHasAPointLightAndTheEmissiveQuad) {
+TEST(ScenesCollada, CBemptyHasAPointLightAndTheEmissiveQuad) {
   PRISM_REQUIRE_CS184(path, "CBempty.dae");
   const Scene scene = load_scene(path);
   ASSERT_EQ(scene.lights.size(), 1u);
@@ -224,7 +224,7 @@ TEST(ColladaLoader, CBemptyHasAPointLightAndTheEmissiveQuad) {
   EXPECT_NEAR(emitted_power(scene), kPi * 0.48 * 10.0, 1e-3);
 }
 
-TEST(ColladaLoader, AreaLightAwayFromTheQuadIsNotADuplicate) {
+TEST(ScenesCollada, AreaLightAwayFromTheQuadIsNotADuplicate) {
   PRISM_REQUIRE_CS184(path, "CBspheres.dae");
   const std::string text = read_file(path);
   const std::string node = "<matrix sid=\"transform\">0.6 0 0 0 0 0.8 0 0 0 0 1 1.49";
@@ -340,7 +340,7 @@ const TriangleMesh& mesh_named(const Scene& scene, const std::string& name) {
   return none;
 }
 
-TEST(ColladaLoader, SyntheticNodesTransformsAndFanTriangulation) {
+TEST(ScenesCollada, SyntheticNodesTransformsAndFanTriangulation) {
   const Scene scene = load_text(features_document());
   const TriangleMesh& quad = mesh_named(scene, "child/quad/q");
   // By hand: p -> scale 2 -> matrix (+10 x) -> rotate 90 about z -> translate (1,2,3), in the
@@ -371,7 +371,7 @@ TEST(ColladaLoader, SyntheticNodesTransformsAndFanTriangulation) {
   }
 }
 
-TEST(ColladaLoader, SyntheticLightsInTheZUpWorld) {
+TEST(ScenesCollada, SyntheticLightsInTheZUpWorld) {
   const Scene scene = load_text(features_document());
   ASSERT_EQ(scene.lights.size(), 4u);
   const Light& spot = scene.lights[0];
@@ -398,7 +398,7 @@ TEST(ColladaLoader, SyntheticLightsInTheZUpWorld) {
   for (const Light& l : scene.lights) EXPECT_EQ(l.up, Vec3(0, 0, 1));
 }
 
-TEST(ColladaLoader, SyntheticMaterialsOfEveryKind) {
+TEST(ScenesCollada, SyntheticMaterialsOfEveryKind) {
   const Scene scene = load_text(features_document());
   std::map<std::string, Material> by_kind;
   for (const std::string kind : kMaterialKinds) {
@@ -429,7 +429,7 @@ TEST(ColladaLoader, SyntheticMaterialsOfEveryKind) {
   EXPECT_EQ(scene.materials.size(), kMaterialKinds.size());  // each bound material once
 }
 
-TEST(ColladaLoader, SyntheticCameraUsesYfovAndAspect) {
+TEST(ScenesCollada, SyntheticCameraUsesYfovAndAspect) {
   const Scene scene = load_text(features_document());
   EXPECT_NEAR(scene.camera.vfov_deg, 30.0f, 1e-4f);
   const double hfov = 2.0 * std::atan(std::tan(15.0 * kPi / 180.0) * 2.0) * 180.0 / kPi;
@@ -444,7 +444,7 @@ TEST(ColladaLoader, SyntheticCameraUsesYfovAndAspect) {
 // The up axis is a global rotation into prism's Z-up world: reading the same numbers as Y_UP
 // or X_UP gives the Z_UP scene turned so the file's up axis becomes +Z, camera included (the
 // framing's axis-aligned box turns exactly with it).
-TEST(ColladaLoader, UpAxisIsAGlobalRotation) {
+TEST(ScenesCollada, UpAxisIsAGlobalRotation) {
   const std::string y_up = features_document();
   const Scene as_z = load_text(replaced(y_up, "Y_UP", "Z_UP"));
   const Scene as_y = load_text(y_up);
@@ -469,7 +469,7 @@ TEST(ColladaLoader, UpAxisIsAGlobalRotation) {
   }
 }
 
-TEST(ColladaLoader, FileWithoutCameraIsFramedFromTheFront) {
+TEST(ScenesCollada, FileWithoutCameraIsFramedFromTheFront) {
   const Scene scene = load_text(kBase);
   const Bounds3 b = scene.geometry.bounds();
   expect_near(scene.camera.target, b.center());
@@ -477,7 +477,7 @@ TEST(ColladaLoader, FileWithoutCameraIsFramedFromTheFront) {
   expect_near(scene.camera.position, b.center() + Vec3(0, -r, 0), 1e-4f);
 }
 
-TEST(ColladaLoader, LiteralCameraOption) {
+TEST(ScenesCollada, LiteralCameraOption) {
   SceneLoadOptions literal;
   literal.literal_camera = true;
   const Scene scene = load_text(features_document(), literal);

@@ -19,7 +19,7 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 /// A temporary folder with one scene file in it, removed at the end of the test.
-class JsonSceneTest : public ::testing::Test {
+class ScenesJson : public ::testing::Test {
  protected:
   void SetUp() override { dir_ = test::make_temp_dir("scenes_json"); }
   void TearDown() override {
@@ -69,7 +69,7 @@ json base_scene() {
   })");
 }
 
-TEST_F(JsonSceneTest, LoadsEveryFeature) {
+TEST_F(ScenesJson, LoadsEveryFeature) {
   const Scene scene = load(R"({
     "render": {"width": 640, "height": 320, "spp": 8, "max_depth": 7, "integrator": "path",
                "seed": 12345678901234},
@@ -163,7 +163,7 @@ TEST_F(JsonSceneTest, LoadsEveryFeature) {
   EXPECT_NO_THROW(scene.validate());
 }
 
-TEST_F(JsonSceneTest, FovAxisAndDefaults) {
+TEST_F(ScenesJson, FovAxisAndDefaults) {
   json scene = base_scene();
   Scene s = load(scene.dump());
   EXPECT_FLOAT_EQ(s.camera.vfov_deg, 45.0f);  // vertical by default
@@ -179,7 +179,7 @@ TEST_F(JsonSceneTest, FovAxisAndDefaults) {
   EXPECT_LT(s.camera.vfov_deg, 45.0f);
 }
 
-TEST_F(JsonSceneTest, TransformsMoveGeometryAndMirrorsKeepOrientation) {
+TEST_F(ScenesJson, TransformsMoveGeometryAndMirrorsKeepOrientation) {
   json scene = base_scene();
   scene["meshes"][0]["transform"] = {{"scale", {-1, 1, 1}}, {"translate", {10, 0, 0}}};
   const Scene s = load(scene.dump());
@@ -199,7 +199,7 @@ TEST_F(JsonSceneTest, TransformsMoveGeometryAndMirrorsKeepOrientation) {
   EXPECT_NEAR(p.y, 1.0f, 1e-6f);
 }
 
-TEST_F(JsonSceneTest, MalformedJsonGivesLineAndColumn) {
+TEST_F(ScenesJson, MalformedJsonGivesLineAndColumn) {
   const Error e = error_of("{\n  \"camera\": {\n    \"fov\": 40,,\n  }\n}\n");
   EXPECT_EQ(e.location().line, 3);
   EXPECT_NE(e.message().find("line 3, column 15"), std::string::npos) << e.what();
@@ -207,7 +207,7 @@ TEST_F(JsonSceneTest, MalformedJsonGivesLineAndColumn) {
   EXPECT_NE(error_of("{\"camera\": [1e999]}").message().find("1e999"), std::string::npos);
 }
 
-TEST_F(JsonSceneTest, SemanticErrorsCarryTheLine) {
+TEST_F(ScenesJson, SemanticErrorsCarryTheLine) {
   const Error e = error_of(R"({
   "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov": 45},
   "materials": [
@@ -224,7 +224,7 @@ TEST_F(JsonSceneTest, SemanticErrorsCarryTheLine) {
       << e.what();
 }
 
-TEST_F(JsonSceneTest, WrongTypes) {
+TEST_F(ScenesJson, WrongTypes) {
   json s = base_scene();
   s["camera"]["fov"] = "wide";
   expect_error(s, "camera.fov", "expected a number, got string");
@@ -242,7 +242,7 @@ TEST_F(JsonSceneTest, WrongTypes) {
   expect_error(s, "meshes[0].positions[1][1]", "expected a number, got string");
 }
 
-TEST_F(JsonSceneTest, MissingRequiredFields) {
+TEST_F(ScenesJson, MissingRequiredFields) {
   json s = base_scene();
   s["camera"].erase("fov");
   expect_error(s, "camera", "missing required field 'fov'");
@@ -263,7 +263,7 @@ TEST_F(JsonSceneTest, MissingRequiredFields) {
   expect_error(s, "materials[0]", "'radiance'");
 }
 
-TEST_F(JsonSceneTest, UnknownKeysAreRejectedWithTheValidOnes) {
+TEST_F(ScenesJson, UnknownKeysAreRejectedWithTheValidOnes) {
   json s = base_scene();
   s["materials"][0]["relfectance"] = 0.5;
   const Error e = error_of_scene(s);
@@ -289,7 +289,7 @@ TEST_F(JsonSceneTest, UnknownKeysAreRejectedWithTheValidOnes) {
   expect_error(s, "materials[0].tpye", "did you mean 'type'");
 }
 
-TEST_F(JsonSceneTest, NumbersOutOfRange) {
+TEST_F(ScenesJson, NumbersOutOfRange) {
   json s = base_scene();
   s["spheres"][0]["radius"] = -1;
   expect_error(s, "spheres[0].radius", "must be > 0");
@@ -336,7 +336,7 @@ TEST_F(JsonSceneTest, NumbersOutOfRange) {
   expect_error(s, "materials[0].reflectance[1]", "must be in [0, 1]");
 }
 
-TEST_F(JsonSceneTest, DanglingAndDuplicateMaterialNames) {
+TEST_F(ScenesJson, DanglingAndDuplicateMaterialNames) {
   json s = base_scene();
   s["meshes"][0]["material"] = "nope";
   expect_error(s, "meshes[0].material", "unknown material 'nope'; defined materials: white");
@@ -354,7 +354,7 @@ TEST_F(JsonSceneTest, DanglingAndDuplicateMaterialNames) {
   expect_error(s, "lights[0].type", "available: point, spot");
 }
 
-TEST_F(JsonSceneTest, CameraTargetAliases) {
+TEST_F(ScenesJson, CameraTargetAliases) {
   json s = base_scene();
   s["camera"]["look_at"] = {0, 0, 0};
   expect_error(s, "camera", "not both");
@@ -363,7 +363,7 @@ TEST_F(JsonSceneTest, CameraTargetAliases) {
   expect_error(s, "camera", "'target' (or 'look_at')");
 }
 
-TEST_F(JsonSceneTest, MissingAndCorruptMeshFiles) {
+TEST_F(ScenesJson, MissingAndCorruptMeshFiles) {
   json s = base_scene();
   s["meshes"][0] = {{"material", "white"}, {"file", "missing/bunny.obj"}};
   Error e = error_of_scene(s);
@@ -378,7 +378,7 @@ TEST_F(JsonSceneTest, MissingAndCorruptMeshFiles) {
   EXPECT_NE(e.message().find("broken.ply"), std::string::npos) << e.what();
 }
 
-TEST_F(JsonSceneTest, HostileInputFailsCleanly) {
+TEST_F(ScenesJson, HostileInputFailsCleanly) {
   // Deep nesting: rejected by depth, not by a stack overflow.
   const Error deep =
       error_of("{\"camera\": " + std::string(200000, '[') + std::string(200000, ']') + "}");
@@ -399,7 +399,7 @@ TEST_F(JsonSceneTest, HostileInputFailsCleanly) {
 }
 
 // docs/SCENE_FORMAT.md's complete example must stay a loadable scene.
-TEST_F(JsonSceneTest, DocumentedExampleLoads) {
+TEST_F(ScenesJson, DocumentedExampleLoads) {
   std::ifstream in(fs::path(PRISM_SOURCE_DIR) / "docs" / "SCENE_FORMAT.md");
   std::stringstream doc;
   doc << in.rdbuf();

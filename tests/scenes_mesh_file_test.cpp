@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 const std::vector<Vec3> kPositions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5f, 0.5f, 2}};
 const std::vector<glm::uvec3> kTriangles = {{0, 1, 2}, {0, 2, 3}, {0, 1, 4}};
 
-class MeshFileTest : public ::testing::Test {
+class ScenesMeshFile : public ::testing::Test {
  protected:
   void SetUp() override { dir_ = test::make_temp_dir("mesh_file"); }
   void TearDown() override {
@@ -83,7 +83,7 @@ std::string ply_header(const std::string& format) {
          "\nproperty list uchar int vertex_indices\nend_header\n";
 }
 
-TEST_F(MeshFileTest, ObjRoundTrip) {
+TEST_F(ScenesMeshFile, ObjRoundTrip) {
   test::write_text(dir_ / "mesh.obj", obj_text(false));
   const TriangleMesh mesh = load_through_scene("mesh.obj");
   expect_same_triangles(mesh);
@@ -91,7 +91,7 @@ TEST_F(MeshFileTest, ObjRoundTrip) {
   EXPECT_EQ(mesh.material_id, 0u);
 }
 
-TEST_F(MeshFileTest, ObjNormalsArePerCorner) {
+TEST_F(ScenesMeshFile, ObjNormalsArePerCorner) {
   test::write_text(dir_ / "lit.obj", obj_text(true));
   const TriangleMesh mesh = load_mesh_file(dir_ / "lit.obj");
   expect_same_triangles(mesh);
@@ -100,7 +100,7 @@ TEST_F(MeshFileTest, ObjNormalsArePerCorner) {
   EXPECT_EQ(mesh.name, "lit.obj");
 }
 
-TEST_F(MeshFileTest, AsciiPlyRoundTripWithTransform) {
+TEST_F(ScenesMeshFile, AsciiPlyRoundTripWithTransform) {
   std::string s = ply_header("ascii");
   for (const Vec3& p : kPositions) {
     s += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
@@ -114,7 +114,7 @@ TEST_F(MeshFileTest, AsciiPlyRoundTripWithTransform) {
                         Vec3(1, 2, 3));
 }
 
-TEST_F(MeshFileTest, BinaryPlyRoundTrip) {
+TEST_F(ScenesMeshFile, BinaryPlyRoundTrip) {
   std::string s = ply_header("binary_little_endian");
   const auto append = [&s](const void* data, size_t n) {
     s.append(static_cast<const char*>(data), n);
@@ -132,14 +132,14 @@ TEST_F(MeshFileTest, BinaryPlyRoundTrip) {
   expect_same_triangles(load_through_scene("binary.ply"));
 }
 
-TEST_F(MeshFileTest, QuadsAreTriangulated) {
+TEST_F(ScenesMeshFile, QuadsAreTriangulated) {
   test::write_text(dir_ / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   const TriangleMesh mesh = load_mesh_file(dir_ / "quad.obj");
   EXPECT_EQ(mesh.triangle_count(), 2u);
   EXPECT_EQ(mesh.positions.size(), 4u);  // identical vertices are shared
 }
 
-TEST_F(MeshFileTest, LinesAndPointsAreDropped) {
+TEST_F(ScenesMeshFile, LinesAndPointsAreDropped) {
   test::write_text(dir_ / "mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\np 3\nf 1 2 3\n");
   EXPECT_EQ(load_mesh_file(dir_ / "mixed.obj").triangle_count(), 1u);
 }
@@ -155,7 +155,7 @@ void expect_input_error(const fs::path& path, const std::string& words) {
   }
 }
 
-TEST_F(MeshFileTest, BadFilesAreInputErrors) {
+TEST_F(ScenesMeshFile, BadFilesAreInputErrors) {
   expect_input_error(dir_ / "absent.obj", "not found");
   test::write_text(dir_ / "mesh.stl", "solid x\nendsolid x\n");
   expect_input_error(dir_ / "mesh.stl", "supported: .obj, .ply");
@@ -173,7 +173,7 @@ TEST_F(MeshFileTest, BadFilesAreInputErrors) {
 
 // Assimp 5.2 hangs on some of these and reads others as garbage vertices: prism checks the
 // structure itself first.
-TEST_F(MeshFileTest, CorruptPlyFilesAreRejectedQuickly) {
+TEST_F(ScenesMeshFile, CorruptPlyFilesAreRejectedQuickly) {
   test::write_text(dir_ / "no_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\ngarbage\n");
   expect_input_error(dir_ / "no_end.ply", "unexpected header line 'garbage'");
   test::write_text(dir_ / "open.ply", "ply\nformat ascii 1.0\nelement vertex 3\n");

@@ -31,7 +31,7 @@ std::map<std::pair<uint32_t, uint32_t>, int> edge_use(const TriangleMesh& mesh) 
   return uses;
 }
 
-TEST(MeshGenerator, ParsesAndPrintsEveryKind) {
+TEST(ScenesMeshGenerator, ParsesAndPrintsEveryKind) {
   for (const GeneratedMeshKind kind : kAllKinds) {
     EXPECT_EQ(parse_generated_mesh_kind(to_string(kind)), kind);
   }
@@ -44,7 +44,7 @@ TEST(MeshGenerator, ParsesAndPrintsEveryKind) {
   }
 }
 
-TEST(MeshGenerator, ExactCountsForSoupAndSlivers) {
+TEST(ScenesMeshGenerator, ExactCountsForSoupAndSlivers) {
   for (const size_t n : {1u, 7u, 1000u}) {
     const TriangleMesh soup = generate_mesh(GeneratedMeshKind::kSoup, n, 3);
     EXPECT_EQ(soup.triangle_count(), n);
@@ -54,7 +54,7 @@ TEST(MeshGenerator, ExactCountsForSoupAndSlivers) {
   }
 }
 
-TEST(MeshGenerator, SphereAndGridCountsAreNearTheRequest) {
+TEST(ScenesMeshGenerator, SphereAndGridCountsAreNearTheRequest) {
   for (const size_t n : {100u, 2000u, 50000u}) {
     for (const auto kind :
          {GeneratedMeshKind::kSphere, GeneratedMeshKind::kNoisySphere, GeneratedMeshKind::kGrid}) {
@@ -69,11 +69,11 @@ TEST(MeshGenerator, SphereAndGridCountsAreNearTheRequest) {
   EXPECT_EQ(generate_mesh(GeneratedMeshKind::kGrid, 1).triangle_count(), 2u);
 }
 
-TEST(MeshGenerator, ZeroTrianglesIsAnError) {
+TEST(ScenesMeshGenerator, ZeroTrianglesIsAnError) {
   EXPECT_THROW(generate_mesh(GeneratedMeshKind::kSoup, 0), Error);
 }
 
-TEST(MeshGenerator, DeterministicForKindCountAndSeed) {
+TEST(ScenesMeshGenerator, DeterministicForKindCountAndSeed) {
   for (const GeneratedMeshKind kind : kAllKinds) {
     const TriangleMesh a = generate_mesh(kind, 500, 42, 3);
     const TriangleMesh b = generate_mesh(kind, 500, 42, 3);
@@ -97,7 +97,7 @@ TEST(MeshGenerator, DeterministicForKindCountAndSeed) {
   }
 }
 
-TEST(MeshGenerator, StaysInsideTheDocumentedBounds) {
+TEST(ScenesMeshGenerator, StaysInsideTheDocumentedBounds) {
   const float eps = 1e-5f;
   for (const GeneratedMeshKind kind : kAllKinds) {
     const TriangleMesh mesh = generate_mesh(kind, 3000, 9);
@@ -126,7 +126,7 @@ TEST(MeshGenerator, StaysInsideTheDocumentedBounds) {
   EXPECT_GT(lo, 0.6f);
 }
 
-TEST(MeshGenerator, GridSharesEdgesAndVertices) {
+TEST(ScenesMeshGenerator, GridSharesEdgesAndVertices) {
   const TriangleMesh grid = generate_mesh(GeneratedMeshKind::kGrid, 2 * 10 * 10);
   ASSERT_EQ(grid.triangle_count(), 200u);
   EXPECT_EQ(grid.positions.size(), 11u * 11u);
@@ -147,7 +147,7 @@ TEST(MeshGenerator, GridSharesEdgesAndVertices) {
   }
 }
 
-TEST(MeshGenerator, SpheresAreClosedAndOutwardFacing) {
+TEST(ScenesMeshGenerator, SpheresAreClosedAndOutwardFacing) {
   for (const auto kind : {GeneratedMeshKind::kSphere, GeneratedMeshKind::kNoisySphere}) {
     const TriangleMesh mesh = generate_mesh(kind, 1000, 2);
     for (const auto& [edge, count] : edge_use(mesh)) {
@@ -164,7 +164,7 @@ TEST(MeshGenerator, SpheresAreClosedAndOutwardFacing) {
   }
 }
 
-TEST(MeshGenerator, SliversAreLongAndThin) {
+TEST(ScenesMeshGenerator, SliversAreLongAndThin) {
   const TriangleMesh mesh = generate_mesh(GeneratedMeshKind::kSlivers, 2000, 11);
   for (const auto& t : mesh.triangles) {
     const Vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y], p2 = mesh.positions[t.z];
@@ -181,7 +181,7 @@ TEST(MeshGenerator, SliversAreLongAndThin) {
   }
 }
 
-TEST(MeshGenerator, EveryKindPassesValidation) {
+TEST(ScenesMeshGenerator, EveryKindPassesValidation) {
   for (const GeneratedMeshKind kind : kAllKinds) {
     SceneGeometry geometry;
     geometry.meshes.push_back(generate_mesh(kind, 777, 5));

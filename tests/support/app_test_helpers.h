@@ -1,14 +1,18 @@
 #pragma once
 
-// Helpers shared by the tests that run the prism program (tests/app_*_test.cpp).
+// Helpers shared by the tests of the prism program (tests/app_*_test.cpp, and the colour tests
+// that run it): scenes to render, per-test folders, the one-line error contract, image files.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include "color/color_pipeline.h"
 #include "tests/support/test_support.h"
 
 namespace prism::test {
@@ -114,6 +118,11 @@ inline std::vector<std::string> dir_entries(const std::filesystem::path& dir) {
   return names;
 }
 
+/// Number of lines (newline characters) of `text`, e.g. of a command's output.
+inline size_t line_count(const std::string& text) {
+  return size_t(std::count(text.begin(), text.end(), '\n'));
+}
+
 /// The contract for every rejected input: the exit code, exactly one line on stderr starting
 /// "prism: error: " and containing every string of `mentions`.
 inline void expect_one_line_error(const ProgramResult& r, int exit_code,
@@ -124,6 +133,26 @@ inline void expect_one_line_error(const ProgramResult& r, int exit_code,
   EXPECT_EQ(r.err.rfind("prism: error: ", 0), 0u) << "stderr: " << r.err;
   for (const auto& m : mentions) {
     EXPECT_NE(r.err.find(m), std::string::npos) << "stderr lacks '" << m << "': " << r.err;
+  }
+}
+
+/// Options of the bundled colour config, whatever the caller's environment: unsets $OCIO (for
+/// the rest of the process).
+inline ColorOptions bundled_config() {
+  unsetenv("OCIO");  // the bundled config, whatever the caller's environment
+  return {};
+}
+
+/// A Portable Float Map (colour, little-endian) holding `values` (width * height * 3, top row
+/// first); PFM stores rows bottom to top. The one float format that needs no library to write
+/// and may hold NaN and infinity.
+inline void write_pfm(const std::filesystem::path& path, int width, int height,
+                      const std::vector<float>& values) {
+  std::ofstream out(path, std::ios::binary);
+  out << "PF\n" << width << " " << height << "\n-1.0\n";
+  for (int y = height - 1; y >= 0; --y) {
+    out.write(reinterpret_cast<const char*>(values.data() + size_t(y) * width * 3),
+              std::streamsize(sizeof(float) * width * 3));
   }
 }
 

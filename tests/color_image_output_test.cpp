@@ -1,4 +1,5 @@
-// EXR and display-image writers: round trips through OpenImageIO, header contents, atomicity.
+// The image writers of color/image_output.h, EXR and display images (PNG, JPEG, TIFF): round
+// trips through OpenImageIO, header contents, encodings, atomicity and the writability check.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -20,7 +21,7 @@ namespace prism {
 namespace {
 namespace fs = std::filesystem;
 
-class ColorExrTest : public ::testing::Test {
+class ColorImageOutput : public ::testing::Test {
  protected:
   void SetUp() override {
     if (const char* v = std::getenv("OCIO")) saved_ocio_ = v;
@@ -92,7 +93,7 @@ Error expect_error(F&& f) {
   return Error(ErrorKind::kInternal, "no error");
 }
 
-TEST_F(ColorExrTest, HalfZipRoundTripKeepsPixelsChannelsAndHeader) {
+TEST_F(ColorImageOutput, HalfZipRoundTripKeepsPixelsChannelsAndHeader) {
   ColorPipeline pipeline({});
   const Image image = make_image(7, 5);
   const fs::path path = dir_ / "beauty.exr";
@@ -144,7 +145,7 @@ TEST_F(ColorExrTest, HalfZipRoundTripKeepsPixelsChannelsAndHeader) {
   EXPECT_EQ(other_files(dir_, "beauty.exr"), std::vector<std::string>{});
 }
 
-TEST_F(ColorExrTest, FloatPizInAcescgConvertsColourLayersOnly) {
+TEST_F(ColorImageOutput, FloatPizInAcescgConvertsColourLayersOnly) {
   ColorOptions options;
   options.output_space = "ACEScg";
   ColorPipeline pipeline(options);
@@ -180,7 +181,7 @@ TEST_F(ColorExrTest, FloatPizInAcescgConvertsColourLayersOnly) {
   EXPECT_GT(largest_change, 0.01f);  // the conversion did something
 }
 
-TEST_F(ColorExrTest, EveryCompressionIsWrittenAndBadOptionsAreUsageErrors) {
+TEST_F(ColorImageOutput, EveryCompressionIsWrittenAndBadOptionsAreUsageErrors) {
   ColorPipeline pipeline({});
   const Image image = make_image(16, 16);
   for (const char* compression : {"zip", "piz", "dwaa", "none"}) {
@@ -207,7 +208,7 @@ TEST_F(ColorExrTest, EveryCompressionIsWrittenAndBadOptionsAreUsageErrors) {
             "unknown EXR compression 'PIZ'; available: zip, piz, dwaa, none");
 }
 
-TEST_F(ColorExrTest, HalfClampsOverflowVisiblyAndFloatKeepsIt) {
+TEST_F(ColorImageOutput, HalfClampsOverflowVisiblyAndFloatKeepsIt) {
   ColorPipeline pipeline({});
   Image image;
   image.width = 2;
@@ -225,7 +226,7 @@ TEST_F(ColorExrTest, HalfClampsOverflowVisiblyAndFloatKeepsIt) {
   EXPECT_EQ(full.attribute("prism:halfClampedValues"), "");
 }
 
-TEST_F(ColorExrTest, MissingFolderIsAnOutputErrorAndLeavesNoFile) {
+TEST_F(ColorImageOutput, MissingFolderIsAnOutputErrorAndLeavesNoFile) {
   ColorPipeline pipeline({});
   const fs::path path = dir_ / "no_such_folder" / "beauty.exr";
   Error e = expect_error([&] { check_output_writable(path); });
@@ -247,7 +248,7 @@ TEST_F(ColorExrTest, MissingFolderIsAnOutputErrorAndLeavesNoFile) {
 
 // An I/O failure in the middle of writing: the file-size limit makes writes past 64 KiB fail
 // (EFBIG), as a full disk would. The previous file must survive byte for byte.
-TEST_F(ColorExrTest, FailedWriteLeavesThePreviousFileUntouched) {
+TEST_F(ColorImageOutput, FailedWriteLeavesThePreviousFileUntouched) {
   ColorPipeline pipeline({});
   const fs::path path = dir_ / "beauty.exr";
   write_exr(path, make_image(8, 8), metadata_pairs, pipeline);
@@ -280,7 +281,7 @@ TEST_F(ColorExrTest, FailedWriteLeavesThePreviousFileUntouched) {
   EXPECT_EQ(other_files(dir_, "beauty.exr"), std::vector<std::string>{});
 }
 
-TEST_F(ColorExrTest, NonFiniteValuesAreRefusedBeforeAnythingIsWritten) {
+TEST_F(ColorImageOutput, NonFiniteValuesAreRefusedBeforeAnythingIsWritten) {
   ColorPipeline pipeline({});
   const fs::path path = dir_ / "beauty.exr";
   write_exr(path, make_image(3, 3), metadata_pairs, pipeline);
@@ -301,7 +302,7 @@ TEST_F(ColorExrTest, NonFiniteValuesAreRefusedBeforeAnythingIsWritten) {
   EXPECT_EQ(other_files(dir_, "beauty.exr"), std::vector<std::string>{});
 }
 
-TEST_F(ColorExrTest, DisplayImagesAreEightBitThroughTheView) {
+TEST_F(ColorImageOutput, DisplayImagesAreEightBitThroughTheView) {
   ColorPipeline pipeline({});
   Image image;
   image.width = 3;

@@ -1,5 +1,5 @@
-// The median-split BVH: tree invariants, degenerate inputs, parameters, and exact agreement
-// with brute force on small scenes.
+// The homework's median-split BVH (accel/bvh/homework/): tree invariants, degenerate inputs,
+// parameters, and exact agreement with brute force on small scenes.
 
 #include <gtest/gtest.h>
 
@@ -42,7 +42,7 @@ SceneGeometry small_scene(int triangles) {
   return g;
 }
 
-TEST(AccelBvh, TreeInvariantsHoldForEveryLeafSize) {
+TEST(AccelHomeworkBvh, TreeInvariantsHoldForEveryLeafSize) {
   const SceneGeometry g = small_scene(400);
   for (uint32_t leaf : {1u, 2u, 3u, 4u, 16u, 255u}) {
     const auto prims = gather_homework_primitives(g);
@@ -56,13 +56,14 @@ TEST(AccelBvh, TreeInvariantsHoldForEveryLeafSize) {
     const AccelStats s = homework_bvh_stats(bvh);
     EXPECT_EQ(s.nodes, bvh.nodes.size());
     EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
-    EXPECT_EQ(s.bytes, bvh.nodes.size() * sizeof(HomeworkBvhNode) + prims.size() * sizeof(PrimitiveId));
+    EXPECT_EQ(s.bytes,
+              bvh.nodes.size() * sizeof(HomeworkBvhNode) + prims.size() * sizeof(PrimitiveId));
     // Median splits halve the count: depth is at most ceil(log2(n / leaf)) + 1.
     EXPECT_LE(double(s.max_depth), std::ceil(std::log2(double(prims.size()) / leaf)) + 1.0);
   }
 }
 
-TEST(AccelBvh, CheckCatchesABrokenTree) {
+TEST(AccelHomeworkBvh, CheckCatchesABrokenTree) {
   const SceneGeometry g = small_scene(40);
   const auto prims = gather_homework_primitives(g);
   HomeworkBvh bvh = build_homework_bvh(prims, {});
@@ -75,7 +76,7 @@ TEST(AccelBvh, CheckCatchesABrokenTree) {
   EXPECT_THROW(check_homework_bvh(repeated, prims), Error);
 }
 
-TEST(AccelBvh, MillionIdenticalTrianglesBuildShallowAndTieToTheFirst) {
+TEST(AccelHomeworkBvh, MillionIdenticalTrianglesBuildShallowAndTieToTheFirst) {
   SceneGeometry g;
   TriangleMesh mesh;
   mesh.positions = {{-1, -1, 3}, {1, -1, 3}, {0, 1, 3}};
@@ -98,7 +99,7 @@ TEST(AccelBvh, MillionIdenticalTrianglesBuildShallowAndTieToTheFirst) {
   EXPECT_FALSE(bvh.intersect(r));
 }
 
-TEST(AccelBvh, CoincidentPrimitivesOfBothKindsTieByIds) {
+TEST(AccelHomeworkBvh, CoincidentPrimitivesOfBothKindsTieByIds) {
   SceneGeometry g;
   for (int m = 0; m < 3; ++m) {
     TriangleMesh mesh;
@@ -132,7 +133,7 @@ TEST(AccelBvh, CoincidentPrimitivesOfBothKindsTieByIds) {
   }
 }
 
-TEST(AccelBvh, EqualsBruteBitForBitOnRandomRays) {
+TEST(AccelHomeworkBvh, EqualsBruteBitForBitOnRandomRays) {
   const SceneGeometry g = small_scene(600);
   BruteAccelerator brute(ParamSet{});
   brute.build(g);

@@ -1,5 +1,5 @@
-// Samplers: pure functions of (pixel, index, dimension, seed), in [0, 1), uniform, and the
-// stratification each promises; all give the same image in mean.
+// The samplers of core/samplers: pure functions of (pixel, index, dimension, seed), in [0, 1),
+// uniform, and the stratification each promises; all give the same image in mean.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,7 +17,7 @@ using test::chi_square_test;
 using test::ChiSquareResult;
 using test::sidak_significance;
 
-TEST(IntegratorsSampler, RegistryListsEverySampler) {
+TEST(CoreSamplers, RegistryListsEverySampler) {
   for (const char* name : {"independent", "jittered", "sobol"}) {
     ASSERT_TRUE(sampler_registry().contains(name)) << name;
     EXPECT_EQ(create_sampler(name, 3)->name(), name);
@@ -25,7 +25,7 @@ TEST(IntegratorsSampler, RegistryListsEverySampler) {
   EXPECT_THROW(create_sampler("halton", 1), Error);
 }
 
-TEST(IntegratorsSampler, ValuesArePureFunctionsInUnitInterval) {
+TEST(CoreSamplers, ValuesArePureFunctionsInUnitInterval) {
   for (const char* name : {"independent", "jittered", "sobol"}) {
     SCOPED_TRACE(name);
     auto a = create_sampler(name, 42);
@@ -61,7 +61,7 @@ TEST(IntegratorsSampler, ValuesArePureFunctionsInUnitInterval) {
   }
 }
 
-TEST(IntegratorsSampler, ValuesAreUniform) {
+TEST(CoreSamplers, ValuesAreUniform) {
   // Chi-square of a 64-bin histogram of values pooled over pixels, indices and dimensions.
   const double significance = sidak_significance(0.01, 3);
   for (const char* name : {"independent", "jittered", "sobol"}) {
@@ -96,7 +96,7 @@ bool one_per_cell(const std::vector<Vec2>& points, int cols, int rows) {
   return true;
 }
 
-TEST(IntegratorsSampler, JitteredFillsEveryStratum) {
+TEST(CoreSamplers, JitteredFillsEveryStratum) {
   JitteredSampler s(9, 16);
   for (int dim_pair = 0; dim_pair < 4; ++dim_pair) {
     std::vector<Vec2> points;
@@ -112,7 +112,7 @@ TEST(IntegratorsSampler, JitteredFillsEveryStratum) {
   }
 }
 
-TEST(IntegratorsSampler, SobolPairsAreZeroTwoNets) {
+TEST(CoreSamplers, SobolPairsAreZeroTwoNets) {
   // With 2^m samples per pixel, every pair of dimensions of a pixel is a (0, m, 2)-net: each
   // elementary interval of area 2^-m holds exactly one point.
   for (int m : {4, 6}) {
@@ -135,7 +135,7 @@ TEST(IntegratorsSampler, SobolPairsAreZeroTwoNets) {
   }
 }
 
-TEST(IntegratorsSampler, PermutationElementIsABijection) {
+TEST(CoreSamplers, PermutationElementIsABijection) {
   for (uint32_t count : {1u, 2u, 7u, 16u, 100u, 1000u}) {
     for (uint64_t seed : {1ull, 99ull, 0xdeadbeefcafeull}) {
       std::vector<int> seen(count, 0);
@@ -149,7 +149,7 @@ TEST(IntegratorsSampler, PermutationElementIsABijection) {
   }
 }
 
-TEST(IntegratorsSampler, EverySamplerGivesTheSameImageInMean) {
+TEST(CoreSamplers, EverySamplerGivesTheSameImageInMean) {
   const Scene scene = test::cornell_box(
       {.spheres = true, .sphere_material = MaterialType::kDiffuse, .camera_below_light = true});
   test::TestRender settings;

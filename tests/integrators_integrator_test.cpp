@@ -1,9 +1,11 @@
-// The integrator and sampler registries, the debug integrators, AOVs, adaptive sampling, the
-// film's statistics and independence from the thread count.
+// What every integrator shares (integrators/integrator, integrator_registry): the registry and
+// the parameters it hands over, the AOVs of the first hit, the PixelIntegrator tile loop with
+// adaptive sampling, and images independent of the thread count and of concurrent renders.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <set>
+#include <memory>
+#include <string>
 #include <thread>
 
 #include "core/error.h"
@@ -15,7 +17,7 @@ namespace {
 
 using test::TestRender;
 
-TEST(IntegratorsOutput, RegistryListsEveryIntegrator) {
+TEST(IntegratorsIntegrator, RegistryListsEveryIntegrator) {
   const auto& registry = integrator_registry();
   for (const char* name : {"path", "direct", "ao", "normals", "depth"}) {
     ASSERT_TRUE(registry.contains(name)) << name;
@@ -38,7 +40,7 @@ TEST(IntegratorsOutput, RegistryListsEveryIntegrator) {
   EXPECT_THROW(registry.create("path", bad_rr), Error);
 }
 
-TEST(IntegratorsOutput, FlagAliasesReachTheIntegratorsThatReadThem) {
+TEST(IntegratorsIntegrator, FlagAliasesReachTheIntegratorsThatReadThem) {
   // -m 2 for every integrator, as the driver gives it: only path reads it; nothing is unused.
   for (const char* name : {"path", "direct", "ao", "normals", "depth"}) {
     ParamSet params;
@@ -75,49 +77,7 @@ TEST(IntegratorsOutput, FlagAliasesReachTheIntegratorsThatReadThem) {
   EXPECT_THROW(integrator_registry().create("direct", no_samples), Error);
 }
 
-/// A unit sphere 3 units in front of the camera, nothing else.
-Scene one_sphere() {
-  Scene scene;
-  test::add_material(scene, MaterialType::kDiffuse, Rgb(0.25f, 0.5f, 0.75f), "paint");
-  scene.geometry.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
-  scene.camera.position = Vec3(0.0f, 0.0f, 4.0f);
-  scene.camera.target = Vec3(0.0f);
-  scene.camera.hfov_deg = scene.camera.vfov_deg = 40.0f;
-  scene.geometry.finalize();
-  return scene;
-}
-
-TEST(IntegratorsOutput, NormalsAndDepthOfASphere) {
-  const Scene scene = one_sphere();
-  TestRender settings;
-  settings.width = settings.height = 15;  // odd: the centre pixel looks straight at the sphere
-  settings.spp = 1;
-  settings.sampler = "jittered";  // spp 1: one stratum, the sample at random in it
-  const Image normals = test::render_scene(scene, "normals", settings);
-  const Image depth = test::render_scene(scene, "depth", settings);
-  // Centre: n = (0, 0, 1) -> colour (0.5, 0.5, 1); depth 3.
-  EXPECT_NEAR(normals.at(7, 7, 0), 0.5f, 0.05f);
-  EXPECT_NEAR(normals.at(7, 7, 1), 0.5f, 0.05f);
-  EXPECT_NEAR(normals.at(7, 7, 2), 1.0f, 0.01f);
-  EXPECT_NEAR(depth.at(7, 7, 0), 3.0f, 0.02f);
-  // Corners miss: black, depth 0.
-  EXPECT_EQ(normals.at(0, 0, 0), 0.0f);
-  EXPECT_EQ(depth.at(0, 0, 0), 0.0f);
-  // Every hit pixel: a unit normal on the camera's side, depth in [3, 4].
-  for (int y = 0; y < normals.height; ++y) {
-    for (int x = 0; x < normals.width; ++x) {
-      if (depth.at(x, y, 0) == 0.0f) continue;
-      const Vec3 n =
-          2.0f * Vec3(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2)) - Vec3(1.0f);
-      EXPECT_NEAR(glm::length(n), 1.0f, 1e-3f);
-      EXPECT_GT(n.z, 0.0f);
-      EXPECT_GE(depth.at(x, y, 0), 3.0f - 1e-4f);
-      EXPECT_LE(depth.at(x, y, 0), 4.0f);
-    }
-  }
-}
-
-TEST(IntegratorsOutput, AovsMatchTheDebugIntegrators) {
+TEST(IntegratorsIntegrator, AovsMatchTheDebugIntegrators) {
   const Scene scene = test::cornell_box({.spheres = true});
   TestRender settings;
   settings.spp = 4;
@@ -148,7 +108,7 @@ TEST(IntegratorsOutput, AovsMatchTheDebugIntegrators) {
   EXPECT_NEAR(path.at(cx, cy, Film::kNormalChannel + 2), 1.0f, 1e-4f);
 }
 
-TEST(IntegratorsOutput, AdaptiveSamplingStopsConvergedPixels) {
+TEST(IntegratorsIntegrator, AdaptiveSamplingStopsConvergedPixels) {
   Scene scene = test::cornell_box({.spheres = true, .sphere_material = MaterialType::kDiffuse});
   scene.camera.hfov_deg = scene.camera.vfov_deg = 60.0f;  // the black outside in view too
   TestRender settings;
@@ -186,29 +146,7 @@ TEST(IntegratorsOutput, AdaptiveSamplingStopsConvergedPixels) {
   }
 }
 
-TEST(IntegratorsOutput, FilmMeanVarianceAndNonFiniteSamples) {
-  Film film(2, 1);
-  const float values[] = {1.0f, 2.0f, 3.0f, 6.0f};
-  for (float v : values) film.add_sample({0, 0}, Rgb(v), AovSample{Rgb(0.5f), Vec3(0, 0, 1), 2.0f});
-  film.add_sample({1, 0}, Rgb(std::nanf("")));
-  film.add_sample({1, 0}, Rgb(kInfinity));
-  film.add_sample({1, 0}, Rgb(4.0f));
-  EXPECT_EQ(film.non_finite_samples(), 2u);
-  const Image image = film.resolve();
-  EXPECT_EQ(image.count_non_finite(), 0u);
-  EXPECT_FLOAT_EQ(image.at(0, 0, 0), 3.0f);
-  // Sample variance (1 + 4 + 0 + 9) / 3 = 14/3; of the mean: / 4.
-  EXPECT_NEAR(image.at(0, 0, Film::kVarianceChannel), 14.0f / 3.0f / 4.0f, 1e-5f);
-  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kAlbedoChannel), 0.5f);
-  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kNormalChannel + 2), 1.0f);
-  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kDepthChannel), 2.0f);
-  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kSampleCountChannel), 4.0f);
-  // Non-finite samples count as zero radiance.
-  EXPECT_FLOAT_EQ(image.at(1, 0, 0), 4.0f / 3.0f);
-  EXPECT_FLOAT_EQ(image.at(1, 0, Film::kSampleCountChannel), 3.0f);
-}
-
-TEST(IntegratorsOutput, ImagesDoNotDependOnTheThreadCount) {
+TEST(IntegratorsIntegrator, ImagesDoNotDependOnTheThreadCount) {
   const Scene scene = test::cornell_box({.spheres = true, .sphere_material = MaterialType::kGlass});
   TestRender settings;
   settings.spp = 4;
@@ -249,7 +187,7 @@ struct RenderInputs {
   int size;
 };
 
-TEST(IntegratorsOutput, ConcurrentRendersOfOneInstanceMatchSequentialOnes) {
+TEST(IntegratorsIntegrator, ConcurrentRendersOfOneInstanceMatchSequentialOnes) {
   // Two different scenes (other materials, lights, size and film), so that state of one render
   // leaking into the other would show.
   Scene with_environment = test::cornell_box({.camera_on_floor = true});
@@ -281,33 +219,6 @@ TEST(IntegratorsOutput, ConcurrentRendersOfOneInstanceMatchSequentialOnes) {
     EXPECT_TRUE(concurrent_a.resolve().pixels == sequential_a.resolve().pixels);
     EXPECT_TRUE(concurrent_b.resolve().pixels == sequential_b.resolve().pixels);
   }
-}
-
-TEST(IntegratorsOutput, AmbientOcclusion) {
-  // A lone floor: nothing occludes, so every hit pixel is fully open.
-  Scene scene;
-  test::add_material(scene, MaterialType::kDiffuse, Rgb(0.5f), "floor");
-  scene.geometry.meshes.push_back(
-      test::quad("floor", {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, 0));
-  scene.camera.position = Vec3(0.0f, 1.0f, 2.0f);
-  scene.camera.target = Vec3(0.0f);
-  scene.geometry.finalize();
-  TestRender settings;
-  settings.spp = 4;
-  ParamSet params;
-  params.set("ao.samples", "4");
-  const Image open = test::render_scene(scene, "ao", params, settings);
-  for (int y = 0; y < open.height; ++y) {
-    for (int x = 0; x < open.width; ++x) EXPECT_LE(open.at(x, y, 0), 1.0f);
-  }
-  // The centre looks at the middle of the floor; a corner at the sky.
-  EXPECT_EQ(open.at(open.width / 2, open.height / 2, 0), 1.0f);
-  EXPECT_EQ(open.at(0, 0, 0), 0.0f);
-  // Inside the closed Cornell box, corners are occluded.
-  const Image box = test::render_scene(test::cornell_box(), "ao", params, settings);
-  const test::ImageMean m = test::image_mean(box, 0);
-  EXPECT_GT(m.mean, 0.1);
-  EXPECT_LT(m.mean, 1.0);
 }
 
 }  // namespace

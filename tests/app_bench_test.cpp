@@ -1,5 +1,5 @@
-// `prism bench` and `prism validate` end to end: the JSON rows, option errors, the replay file
-// and heatmap, and the exit codes.
+// `prism bench` end to end (core/app/bench_command): a JSON row per backend, thread count and
+// ray set, and its option errors.
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -15,7 +15,7 @@
 namespace prism {
 namespace {
 
-TEST(AppBenchValidate, BenchWritesARowPerBackendThreadAndRaySet) {
+TEST(AppBench, WritesARowPerBackendThreadAndRaySet) {
   const test::TestDirs dirs("bench");
   const std::filesystem::path json = dirs.out / "bench.json";
   const test::ProgramResult r = test::run_prism({"bench", "gen:sphere:2k", "--json", json.string(),
@@ -41,7 +41,7 @@ TEST(AppBenchValidate, BenchWritesARowPerBackendThreadAndRaySet) {
   EXPECT_NE(r.out.find("sphere_2k"), std::string::npos) << r.out;  // the summary table
 }
 
-TEST(AppBenchValidate, BenchRejectsBadOptions) {
+TEST(AppBench, RejectsBadOptions) {
   EXPECT_EQ(test::run_prism({"bench", "gen:sphere:1k"}).exit_code, 2);  // no --json
   const test::TestDirs dirs("bench_bad");
   const std::string json = (dirs.out / "b.json").string();
@@ -51,28 +51,6 @@ TEST(AppBenchValidate, BenchRejectsBadOptions) {
       test::run_prism({"bench", "gen:sphere:1k", "--json", json, "--backend", "bvh:x:y"}).exit_code,
       2);
   EXPECT_EQ(test::run_prism({"bench", "gen:cube:1k", "--json", json}).exit_code, 2);
-}
-
-TEST(AppBenchValidate, ValidatePassesWritesItsFilesAndReplays) {
-  const test::TestDirs dirs("validate");
-  const std::string failures = (dirs.out / "failures.txt").string();
-  const std::string heatmap = (dirs.out / "heat.png").string();
-  const test::ProgramResult r =
-      test::run_prism({"validate", "gen:grid:200", "--rays", "900", "--failures", failures,
-                       "--heatmap", heatmap, "--set", "embree.refine=false"});
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("hard=0"), std::string::npos) << r.out;
-  EXPECT_TRUE(std::filesystem::exists(heatmap));
-  ASSERT_TRUE(std::filesystem::exists(failures));
-  const test::ProgramResult replay = test::run_prism({"validate", "--replay", failures});
-  EXPECT_EQ(replay.exit_code, 0) << replay.out << replay.err;
-  // bvh against brute force follows the exact rule: not a single ray may differ.
-  const test::ProgramResult exact =
-      test::run_prism({"validate", "gen:soup:500", "--rays", "400", "--against", "brute",
-                       "--failures", failures, "--heatmap", heatmap});
-  ASSERT_EQ(exact.exit_code, 0) << exact.out << exact.err;
-  EXPECT_NE(exact.out.find("exact"), std::string::npos) << exact.out;
-  EXPECT_EQ(exact.out.find("tie=1"), std::string::npos) << exact.out;
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Lights: chi-square goodness of fit of sample_li() against pdf_li(), the values of delta
-// lights, and the light set (selection by power, emissive meshes counted once).
+// Lights (integrators/lights/): chi-square goodness of fit of sample_li() against pdf_li(), the
+// values of delta lights, and the light set (selection by power, emissive meshes counted once).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -55,7 +55,7 @@ TriangleMesh tilted_quad() {
   return mesh;
 }
 
-TEST(IntegratorsLight, MeshLightSamplingMatchesPdf) {
+TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
   const TriangleMesh mesh = tilted_quad();
   const MeshLight light(mesh, Rgb(2.0f));
   for (const Vec3& p : {Vec3(0.0f), Vec3(1.5f, -0.5f, 0.5f)}) {
@@ -86,7 +86,7 @@ TEST(IntegratorsLight, MeshLightSamplingMatchesPdf) {
   }
 }
 
-TEST(IntegratorsLight, SphereLightSamplingMatchesPdf) {
+TEST(IntegratorsLights, SphereLightSamplingMatchesPdf) {
   const Sphere sphere{Vec3(0.3f, 0.2f, 1.5f), 0.6f, 0};
   const SphereLight light(sphere, Rgb(1.0f));
   const Vec3 p(0.0f);
@@ -117,7 +117,7 @@ TEST(IntegratorsLight, SphereLightSamplingMatchesPdf) {
   EXPECT_GT(r.p_value, kSignificance) << r.summary();
 }
 
-TEST(IntegratorsLight, ParallelogramLightSamplingIsUniformInArea) {
+TEST(IntegratorsLights, ParallelogramLightSamplingIsUniformInArea) {
   Light l;
   l.type = LightType::kArea;
   l.color = Rgb(5.0f);
@@ -154,7 +154,7 @@ TEST(IntegratorsLight, ParallelogramLightSamplingIsUniformInArea) {
   EXPECT_FALSE(light.sample_li(Vec3(0.0f, 0.0f, 3.0f), {0.5f, 0.5f}).has_value());
 }
 
-TEST(IntegratorsLight, AmbientLightSamplingMatchesPdf) {
+TEST(IntegratorsLights, AmbientLightSamplingMatchesPdf) {
   Light l;
   l.type = LightType::kAmbient;
   l.color = Rgb(0.5f);
@@ -193,7 +193,7 @@ Image test_environment() {
   return image;
 }
 
-TEST(IntegratorsLight, EnvironmentSamplingMatchesPdf) {
+TEST(IntegratorsLights, EnvironmentSamplingMatchesPdf) {
   const EnvironmentLight light(test_environment(), glm::normalize(Vec3(0.0f, 0.2f, 1.0f)), 1.0f);
   const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
     const auto s = light.sample_li(Vec3(0.0f), u);
@@ -218,7 +218,7 @@ TEST(IntegratorsLight, EnvironmentSamplingMatchesPdf) {
   EXPECT_THROW(EnvironmentLight(no_rgb, Vec3(0, 0, 1), 1.0f), Error);
 }
 
-TEST(IntegratorsLight, PointAndSpotLightsFollowColladaAttenuation) {
+TEST(IntegratorsLights, PointAndSpotLightsFollowColladaAttenuation) {
   Light l;
   l.type = LightType::kPoint;
   l.color = Rgb(4.0f);
@@ -253,7 +253,7 @@ TEST(IntegratorsLight, PointAndSpotLightsFollowColladaAttenuation) {
   EXPECT_FALSE(spot.sample_li(Vec3(2.0f * std::tan(radians(40.0f)), 0.0f, 0.0f), {0.5f, 0.5f}));
 }
 
-TEST(IntegratorsLight, DirectionalLight) {
+TEST(IntegratorsLights, DirectionalLight) {
   Light l;
   l.type = LightType::kDirectional;
   l.color = Rgb(3.0f);
@@ -294,7 +294,7 @@ Scene scene_with_emitters() {
   return scene;
 }
 
-TEST(IntegratorsLight, LightSetCountsEmissiveMeshesOnceAndChoosesByPower) {
+TEST(IntegratorsLights, LightSetCountsEmissiveMeshesOnceAndChoosesByPower) {
   const Scene scene = scene_with_emitters();
   const LightSet set(scene);
   // The point light, the emissive mesh and the emissive sphere; not the duplicate proxy.
@@ -341,7 +341,7 @@ TEST(IntegratorsLight, LightSetCountsEmissiveMeshesOnceAndChoosesByPower) {
   EXPECT_EQ(set.surface_light(si), nullptr);
 }
 
-TEST(IntegratorsLight, LightSetLightsTheSceneWithItsEnvironmentMap) {
+TEST(IntegratorsLights, LightSetLightsTheSceneWithItsEnvironmentMap) {
   Scene scene = scene_with_emitters();
   const size_t without = LightSet(scene).size();
   // Rows 0-1 (the hemisphere around up = +z) red, rows 2-3 blue.
@@ -371,7 +371,7 @@ TEST(IntegratorsLight, LightSetLightsTheSceneWithItsEnvironmentMap) {
   EXPECT_EQ(turned.le_escaped(Vec3(0.0f, 0.0f, 1.0f) * 0.6f + Vec3(0.0f, 0.8f, 0.0f)), blue);
 }
 
-TEST(IntegratorsLight, AreaLightWithoutDuplicateIsKept) {
+TEST(IntegratorsLights, AreaLightWithoutDuplicateIsKept) {
   Scene scene = scene_with_emitters();
   scene.lights[0].duplicates_emissive_mesh = false;
   const LightSet set(scene);

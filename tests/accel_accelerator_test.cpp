@@ -1,4 +1,5 @@
-// Every backend on tiny hand-made scenes whose answers are known exactly.
+// The Accelerator contract (accel/accelerator.h), run on every backend of the registry on tiny
+// hand-made scenes whose answers are known exactly.
 
 #include <gtest/gtest.h>
 
@@ -10,40 +11,18 @@
 #include "accel/accelerator.h"
 #include "core/error.h"
 #include "core/scene_geometry.h"
+#include "tests/support/accel_test_geometry.h"
 
 namespace prism {
 namespace {
 
+using test::mesh_of;
+using test::one_triangle;
+using test::ray;
+
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-/// A mesh of the given triangles, finalized as loaders leave it.
-TriangleMesh mesh_of(std::vector<Vec3> positions, std::vector<glm::uvec3> triangles) {
-  TriangleMesh m;
-  m.name = "test";
-  m.positions = std::move(positions);
-  m.triangles = std::move(triangles);
-  m.finalize();
-  return m;
-}
-
-/// The triangle (-1,-1,2), (1,-1,2), (-1,1,2): a ray from the origin towards (x, y, 2) hits it
-/// at t = 1 with u = (x+1)/2, v = (y+1)/2 when the direction is (x/2, y/2, 1)*2.
-SceneGeometry one_triangle() {
-  SceneGeometry g;
-  g.meshes.push_back(mesh_of({{-1, -1, 2}, {1, -1, 2}, {-1, 1, 2}}, {{0, 1, 2}}));
-  return g;
-}
-
-Ray ray(Vec3 origin, Vec3 direction, float tmin = 0.0f, float tmax = kInfinity) {
-  Ray r;
-  r.origin = origin;
-  r.direction = direction;
-  r.tmin = tmin;
-  r.tmax = tmax;
-  return r;
-}
-
-class AccelBasic : public ::testing::TestWithParam<std::string> {
+class AccelAccelerator : public ::testing::TestWithParam<std::string> {
  protected:
   /// A backend of this test's kind built on `geometry` (kept alive by the fixture).
   const Accelerator& build(SceneGeometry geometry, const ParamSet& params = {}) {
@@ -63,7 +42,7 @@ class AccelBasic : public ::testing::TestWithParam<std::string> {
   std::unique_ptr<Accelerator> accel_;
 };
 
-TEST_P(AccelBasic, TriangleHitHasEmbreeBarycentrics) {
+TEST_P(AccelAccelerator, TriangleHitHasEmbreeBarycentrics) {
   build(one_triangle());
   const auto hit = query(ray({0, 0, 0}, {-0.5f, 0.25f, 2.0f}));
   ASSERT_TRUE(hit);
@@ -75,7 +54,7 @@ TEST_P(AccelBasic, TriangleHitHasEmbreeBarycentrics) {
   EXPECT_EQ(hit->prim_id, 0u);
 }
 
-TEST_P(AccelBasic, BothFacesAreHit) {
+TEST_P(AccelAccelerator, BothFacesAreHit) {
   build(one_triangle());
   const auto front = query(ray({-0.5f, -0.5f, 0}, {0, 0, 1}));
   const auto back = query(ray({-0.5f, -0.5f, 5}, {0, 0, -1}));
@@ -85,14 +64,14 @@ TEST_P(AccelBasic, BothFacesAreHit) {
   EXPECT_EQ(back->t, 3.0f);
 }
 
-TEST_P(AccelBasic, DirectionNeedNotBeUnit) {
+TEST_P(AccelAccelerator, DirectionNeedNotBeUnit) {
   build(one_triangle());
   const auto hit = query(ray({-0.5f, -0.5f, 0}, {0, 0, 4}));
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->t, 0.5f);
 }
 
-TEST_P(AccelBasic, IntervalIsClosed) {
+TEST_P(AccelAccelerator, IntervalIsClosed) {
   build(one_triangle());
   const Vec3 o(-0.5f, -0.5f, 0), d(0, 0, 1);
   EXPECT_TRUE(query(ray(o, d, 2.0f, kInfinity)));
@@ -105,7 +84,7 @@ TEST_P(AccelBasic, IntervalIsClosed) {
   EXPECT_FALSE(query(ray({-0.5f, -0.5f, 3}, d, -5.0f, kInfinity)));
 }
 
-TEST_P(AccelBasic, Misses) {
+TEST_P(AccelAccelerator, Misses) {
   build(one_triangle());
   EXPECT_FALSE(query(ray({0, 0, 0}, {0, 0, -1})));                     // pointing away
   EXPECT_FALSE(query(ray({0.6f, 0.6f, 0}, {0, 0, 1})));                // beside the hypotenuse
@@ -113,7 +92,7 @@ TEST_P(AccelBasic, Misses) {
   EXPECT_FALSE(query(ray({-0.5f, -0.5f, 0}, {0, 0, 1}, 0.0f, 1.0f)));  // ends before it
 }
 
-TEST_P(AccelBasic, SpheresFromOutsideAndInside) {
+TEST_P(AccelAccelerator, SpheresFromOutsideAndInside) {
   SceneGeometry g;
   g.spheres.push_back({Vec3(0, 0, 5), 1.0f, 0});
   g.spheres.push_back({Vec3(10, 0, 0), 2.0f, 0});
@@ -137,7 +116,7 @@ TEST_P(AccelBasic, SpheresFromOutsideAndInside) {
   EXPECT_FALSE(query(ray({0, 1.0001f, 0}, {0, 0, 1})));  // passes just outside the silhouette
 }
 
-TEST_P(AccelBasic, GeomIdsFollowMeshesThenSpheres) {
+TEST_P(AccelAccelerator, GeomIdsFollowMeshesThenSpheres) {
   SceneGeometry g;
   g.meshes.push_back(mesh_of({{-1, -1, 8}, {1, -1, 8}, {0, 1, 8}}, {{0, 1, 2}}));
   g.meshes.push_back(mesh_of({}, {}));  // an empty mesh keeps its id
@@ -159,7 +138,7 @@ TEST_P(AccelBasic, GeomIdsFollowMeshesThenSpheres) {
   EXPECT_EQ(far->geom_id, 0u);
 }
 
-TEST_P(AccelBasic, ClosestOfManyAlongTheRay) {
+TEST_P(AccelAccelerator, ClosestOfManyAlongTheRay) {
   SceneGeometry g;
   std::vector<Vec3> p;
   std::vector<glm::uvec3> t;
@@ -181,7 +160,7 @@ TEST_P(AccelBasic, ClosestOfManyAlongTheRay) {
   EXPECT_EQ(later->t, 21.0f);
 }
 
-TEST_P(AccelBasic, NonFiniteRaysMissWithoutCrashing) {
+TEST_P(AccelAccelerator, NonFiniteRaysMissWithoutCrashing) {
   SceneGeometry g = one_triangle();
   g.spheres.push_back({Vec3(0, 0, 5), 1.0f, 0});
   build(std::move(g));
@@ -197,7 +176,7 @@ TEST_P(AccelBasic, NonFiniteRaysMissWithoutCrashing) {
   }
 }
 
-TEST_P(AccelBasic, EmptySceneMissesEverything) {
+TEST_P(AccelAccelerator, EmptySceneMissesEverything) {
   build(SceneGeometry{});
   EXPECT_FALSE(query(ray({0, 0, 0}, {0, 0, 1})));
   EXPECT_FALSE(query(ray({1, 2, 3}, {-1, 0.5f, 0.25f}, 1.0f, 2.0f)));
@@ -205,7 +184,7 @@ TEST_P(AccelBasic, EmptySceneMissesEverything) {
   EXPECT_EQ(accel_->stats().leaves, 0u);
 }
 
-TEST_P(AccelBasic, DegenerateTrianglesAreNeverHit) {
+TEST_P(AccelAccelerator, DegenerateTrianglesAreNeverHit) {
   SceneGeometry g;
   // Collinear corners, a repeated corner and a point in front of a proper triangle at z = 2.
   g.meshes.push_back(mesh_of(
@@ -220,7 +199,7 @@ TEST_P(AccelBasic, DegenerateTrianglesAreNeverHit) {
   }
 }
 
-TEST_P(AccelBasic, StatsAreFilled) {
+TEST_P(AccelAccelerator, StatsAreFilled) {
   SceneGeometry g;
   std::vector<Vec3> p;
   std::vector<glm::uvec3> t;
@@ -250,7 +229,7 @@ TEST_P(AccelBasic, StatsAreFilled) {
   }
 }
 
-TEST_P(AccelBasic, BatchedIntersectMatchesSingle) {
+TEST_P(AccelAccelerator, BatchedIntersectMatchesSingle) {
   build(one_triangle());
   const std::vector<Ray> rays = {ray({-0.5f, -0.5f, 0}, {0, 0, 1}), ray({5, 5, 0}, {0, 0, 1}),
                                  ray({0, 0, 0}, {-0.5f, 0.25f, 2.0f})};
@@ -265,7 +244,7 @@ TEST_P(AccelBasic, BatchedIntersectMatchesSingle) {
   }
 }
 
-TEST_P(AccelBasic, RejectsBrokenGeometry) {
+TEST_P(AccelAccelerator, RejectsBrokenGeometry) {
   SceneGeometry g;
   g.meshes.push_back(mesh_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 7}}));
   const auto accel = accelerator_registry().create(GetParam(), {});
@@ -277,102 +256,8 @@ TEST_P(AccelBasic, RejectsBrokenGeometry) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, AccelBasic, ::testing::Values("brute", "bvh", "embree"),
+INSTANTIATE_TEST_SUITE_P(Backends, AccelAccelerator, ::testing::Values("brute", "bvh", "embree"),
                          [](const auto& info) { return info.param; });
-
-TEST(AccelRegistry, ListsEveryBackendWithADescription) {
-  const auto& entries = accelerator_registry().entries();
-  ASSERT_EQ(entries.size(), 3u);
-  EXPECT_EQ(accelerator_registry().names_joined(), "brute, bvh, embree");
-  for (const auto& e : entries) {
-    EXPECT_FALSE(e.description.empty()) << e.name;
-    EXPECT_EQ(e.factory(ParamSet{})->name(), e.name);
-  }
-}
-
-TEST(AccelRegistry, UnknownNameListsTheAvailableOnes) {
-  try {
-    accelerator_registry().create("bhv", ParamSet{});
-    FAIL() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
-    EXPECT_NE(
-        std::string(e.what()).find("unknown accelerator 'bhv'; available: brute, bvh, embree"),
-        std::string::npos)
-        << e.what();
-  }
-}
-
-/// The ErrorKind that creating `name` with key=value throws, or nothing.
-std::optional<ErrorKind> creation_error(const std::string& name, const std::string& key,
-                                        const std::string& value) {
-  ParamSet params;
-  params.set(key, value);
-  try {
-    accelerator_registry().create(name, params);
-  } catch (const Error& e) {
-    return e.kind();
-  }
-  return std::nullopt;
-}
-
-TEST(AccelRegistry, BadParameterValuesAreUsageErrors) {
-  EXPECT_EQ(creation_error("bvh", "bvh.max_leaf_size", "0"), ErrorKind::kUsage);
-  EXPECT_EQ(creation_error("bvh", "bvh.max_leaf_size", "four"), ErrorKind::kUsage);
-  EXPECT_EQ(creation_error("bvh", "bvh.max_leaf_size", "1000"), ErrorKind::kUsage);
-  EXPECT_EQ(creation_error("embree", "embree.quality", "ultra"), ErrorKind::kUsage);
-  EXPECT_EQ(creation_error("embree", "embree.robust", "maybe"), ErrorKind::kUsage);
-  EXPECT_EQ(creation_error("bvh", "bvh.max_leaf_size", "1"), std::nullopt);
-  EXPECT_EQ(creation_error("embree", "embree.quality", "high"), std::nullopt);
-}
-
-TEST(AccelRegistry, ParametersAreMarkedUsed) {
-  ParamSet params;
-  params.set("bvh.max_leaf_size", "8");
-  params.set("embree.robust", "true");
-  params.set("embree.quality", "low");
-  accelerator_registry().create("bvh", params);
-  accelerator_registry().create("embree", params);
-  EXPECT_TRUE(params.unused_with_prefix("bvh.").empty());
-  EXPECT_TRUE(params.unused_with_prefix("embree.").empty());
-}
-
-TEST(AccelEmbree, RobustAndQualityVariantsAgreeOnSimpleHits) {
-  SceneGeometry g = one_triangle();
-  g.spheres.push_back({Vec3(0, 0, 5), 1.0f, 0});
-  for (const char* quality : {"low", "medium", "high"}) {
-    for (const char* robust : {"false", "true"}) {
-      ParamSet params;
-      params.set("embree.quality", quality);
-      params.set("embree.robust", robust);
-      const auto accel = accelerator_registry().create("embree", params);
-      accel->build(g);
-      const auto hit = accel->intersect(ray({-0.5f, -0.5f, 0}, {0, 0, 1}));
-      ASSERT_TRUE(hit) << quality << " " << robust;
-      EXPECT_EQ(hit->t, 2.0f);
-      const auto sphere = accel->intersect(ray({0, 0, 0}, {0, 0, 1}, 2.5f));
-      ASSERT_TRUE(sphere);
-      EXPECT_EQ(sphere->t, 4.0f);
-    }
-  }
-}
-
-TEST(AccelEmbree, MissingVertexPaddingIsAnInternalError) {
-  SceneGeometry g;
-  TriangleMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  m.positions.shrink_to_fit();
-  m.triangles = {{0, 1, 2}};
-  if (m.positions.capacity() > m.positions.size()) GTEST_SKIP() << "shrink_to_fit kept capacity";
-  g.meshes.push_back(std::move(m));
-  const auto accel = accelerator_registry().create("embree", {});
-  try {
-    accel->build(g);
-    FAIL() << "expected the padding check to fail";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::kInternal);
-  }
-}
 
 }  // namespace
 }  // namespace prism

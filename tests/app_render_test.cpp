@@ -1,0 +1,212 @@
+// `prism render` end to end (core/app/render_command, render_options): the EXR and its
+// provenance, the output formats, the integrator flags as aliases of its parameters, the scene
+// file's settings, thread-count independence and the adaptive sampler's rate picture.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "color/image_output.h"
+#include "scenes/scene_loader.h"
+#include "tests/support/app_test_helpers.h"
+#include "tests/support/test_support.h"
+
+namespace prism::test {
+namespace {
+
+TEST(AppRender, WritesValidExrWithProvenance) {
+  const TestDirs dirs("app_render");
+  const std::string scene = dirs.scene("tiny.dae", kTinyCollada);
+  const auto out = dirs.out / "tiny.exr";
+  const auto r = run_prism({"render", scene, "--resolution", "32", "24", "--spp", "1", "--seed",
+                            "7", "-f", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(dir_entries(dirs.out), std::vector<std::string>{"tiny.exr"});  // no temp file left
+  EXPECT_EQ(line_count(r.out), 1u) << r.out;
+  EXPECT_NE(r.out.find(out.string()), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("bvh"), std::string::npos) << r.out;
+
+  const ImageFileContents exr = read_image_file(out);
+  EXPECT_EQ(exr.format, "openexr");
+  EXPECT_EQ(exr.image.width, 32);
+  EXPECT_EQ(exr.image.height, 24);
+  for (const char* channel : {"R", "G", "B"}) {
+    EXPECT_GE(exr.channel(channel), 0) << "no channel " << channel;
+  }
+  EXPECT_EQ(exr.image.count_non_finite(), 0u);
+  EXPECT_EQ(exr.attribute("prism:accelerator"), "bvh");
+  EXPECT_EQ(exr.attribute("prism:spp"), "1");
+  EXPECT_EQ(exr.attribute("prism:seed"), "7");
+  EXPECT_EQ(exr.attribute("prism:resolution"), "32x24");
+  EXPECT_EQ(exr.attribute("prism:non_finite_samples"), "0");
+  EXPECT_EQ(exr.attribute("prism:scene"), scene);
+  for (const char* name : {"prism:version", "prism:integrator", "prism:sampler", "prism:build_ms",
+                           "prism:render_ms", "prism:command_line"}) {
+    EXPECT_NE(exr.attribute(name), "") << "missing " << name;
+  }
+}
+
+TEST(AppRender, PngAndExrFlagsAddTheOtherFormatBeside) {
+  const TestDirs dirs("app_formats");
+  const std::string scene = dirs.scene("tiny.dae", kTinyCollada);
+  const std::vector<std::string> base = {"render", scene, "-r", "32", "24", "-s", "1", "--quiet"};
+  auto args = base;
+  // A parameter of an accelerator not in use is ignored with a warning, not an error.
+  args.insert(args.end(),
+              {"-f", (dirs.out / "a.exr").string(), "--png", "--set", "embree.robust=true"});
+  auto r = run_prism(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --set embree.robust ignored"), std::string::npos) << r.err;
+  args = base;
+  args.insert(args.end(), {"-f", (dirs.out / "b.png").string(), "--exr"});
+  r = run_prism(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(dir_entries(dirs.out), (std::vector<std::string>{"a.exr", "a.png", "b.exr", "b.png"}));
+  EXPECT_EQ(read_image_file(dirs.out / "b.exr").format, "openexr");
+}
+
+TEST(AppRender, ThreadCountDoesNotChangePixels) {
+  const TestDirs dirs("app_threads");
+  const std::string scene = dirs.scene("tiny.dae", kTinyCollada);
+  std::vector<std::vector<float>> pixels;
+  for (const char* threads : {"1", "2"}) {
+    const auto out = dirs.out / (std::string("t") + threads + ".exr");
+    const auto r = run_prism({"render", scene, "-r", "40", "30", "-s", "3", "--seed", "11",
+                              "--exr-type", "float", "-t", threads, "-q", "-f", out.string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    pixels.push_back(read_image_file(out).image.pixels);
+  }
+  ASSERT_FALSE(pixels[0].empty());
+  EXPECT_TRUE(pixels[0] == pixels[1]) << "pixels differ between 1 and 2 threads";
+  EXPECT_TRUE(std::any_of(pixels[0].begin(), pixels[0].end(), [](float v) { return v > 0.0f; }))
+      << "the image is black: the comparison would prove nothing";
+}
+
+/// R, G, B, AOV and variance values of an EXR prism wrote (written as float: exact).
+std::vector<float> exr_pixels(const std::filesystem::path& path) {
+  return read_image_file(path).image.pixels;
+}
+
+TEST(AppRender, IntegratorFlagsAreAliasesOfItsParameters) {
+  const TestDirs dirs("app_aliases");
+  const std::string scene = default_scene_path().string();
+  const std::vector<std::string> base = {"render", scene, "-r", "32",         "24",
+                                         "-s",     "2",   "-q", "--exr-type", "float",
+                                         "--seed", "5",   "-t", "2",          "--integrator"};
+  const auto render = [&](const std::string& integrator, const std::string& output,
+                          std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.push_back(integrator);
+    args.insert(args.end(), extra.begin(), extra.end());
+    args.insert(args.end(), {"-f", (dirs.out / output).string()});
+    return run_prism(args);
+  };
+  // -m 3 is path.max_depth=3, bit for bit; both at once are fine when they agree.
+  for (const auto& [output, extra] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"flag.exr", {"-m", "3"}},
+           {"set.exr", {"--set", "path.max_depth=3"}},
+           {"both.exr", {"-m", "3", "--set", "path.max_depth=3"}},
+           {"other.exr", {"-m", "1"}}}) {
+    const ProgramResult r = render("path", output, extra);
+    ASSERT_EQ(r.exit_code, 0) << output << ": " << r.err;
+    EXPECT_TRUE(r.err.empty()) << output << ": " << r.err;
+  }
+  const std::vector<float> flag = exr_pixels(dirs.out / "flag.exr");
+  ASSERT_FALSE(flag.empty());
+  EXPECT_TRUE(flag == exr_pixels(dirs.out / "set.exr")) << "-m 3 differs from path.max_depth=3";
+  EXPECT_TRUE(flag == exr_pixels(dirs.out / "both.exr"));
+  EXPECT_FALSE(flag == exr_pixels(dirs.out / "other.exr")) << "-m has no effect: proves nothing";
+  // The provenance records the depth in effect either way; --set keys alone under prism:params.
+  const ImageFileContents by_flag = read_image_file(dirs.out / "flag.exr");
+  const ImageFileContents by_set = read_image_file(dirs.out / "set.exr");
+  EXPECT_EQ(by_flag.attribute("prism:max_depth"), "3");
+  EXPECT_EQ(by_set.attribute("prism:max_depth"), "3");
+  EXPECT_EQ(by_flag.attribute("prism:params"), "");
+  EXPECT_EQ(by_set.attribute("prism:params"), "path.max_depth=3");
+
+  // An integrator without the parameters ignores the flags, silently (the homework's command
+  // lines pass -l and -m to every integrator); the provenance still records them.
+  ProgramResult r = render("normals", "normals.exr", {"-l", "4", "-m", "2", "-H"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const ImageFileContents normals = read_image_file(dirs.out / "normals.exr");
+  EXPECT_EQ(normals.attribute("prism:light_samples"), "4");
+  EXPECT_EQ(normals.attribute("prism:max_depth"), "2");
+
+  // A flag and its key with different values: a usage error naming both.
+  expect_one_line_error(render("path", "conflict.exr", {"-m", "3", "--set", "path.max_depth=4"}), 2,
+                        {"-m 3", "path.max_depth=4"});
+  expect_one_line_error(
+      render("direct", "conflict.exr", {"-H", "--set", "direct.hemisphere=false"}), 2,
+      {"-H", "direct.hemisphere=false"});
+  // A key the integrator does not have stays unknown, flag or not.
+  expect_one_line_error(render("normals", "unknown.exr", {"--set", "normals.max_depth=3"}), 2,
+                        {"unknown parameter 'normals.max_depth'"});
+  expect_one_line_error(render("direct", "unknown.exr", {"-m", "3", "--set", "direct.max_depth=3"}),
+                        2, {"unknown parameter 'direct.max_depth'"});
+  EXPECT_FALSE(std::filesystem::exists(dirs.out / "conflict.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dirs.out / "unknown.exr"));
+}
+
+TEST(AppRender, SceneFileMaxDepthIsTheIntegratorsUnlessTheCommandLineGivesOne) {
+  const TestDirs dirs("app_scene_depth");
+  std::ifstream in(default_scene_path());
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string shallow =
+      dirs.scene("shallow.json", replaced(text, "\"max_depth\": 5", "\"max_depth\": 1"));
+  const auto render = [&](const std::string& scene, const std::string& output,
+                          std::vector<std::string> extra) {
+    std::vector<std::string> args = {
+        "render", scene,        "-r",    "32", "24", "-s", "2",
+        "-q",     "--exr-type", "float", "-t", "2",  "-f", (dirs.out / output).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const ProgramResult r = run_prism(args);
+    EXPECT_EQ(r.exit_code, 0) << output << ": " << r.err;
+    EXPECT_TRUE(r.err.empty()) << output << ": " << r.err;
+    return exr_pixels(dirs.out / output);
+  };
+  const std::string original = default_scene_path().string();
+  EXPECT_TRUE(render(shallow, "scene.exr", {}) == render(original, "m1.exr", {"-m", "1"}));
+  // The command line overrides the scene file, by flag or by --set.
+  const std::vector<float> m3 = render(original, "m3.exr", {"-m", "3"});
+  EXPECT_TRUE(render(shallow, "flag.exr", {"-m", "3"}) == m3);
+  EXPECT_TRUE(render(shallow, "set.exr", {"--set", "path.max_depth=3"}) == m3);
+  EXPECT_EQ(read_image_file(dirs.out / "scene.exr").attribute("prism:max_depth"), "1");
+  EXPECT_EQ(read_image_file(dirs.out / "set.exr").attribute("prism:max_depth"), "3");
+}
+
+TEST(AppRender, DefaultSceneRendersWithoutSceneArgument) {
+  const TestDirs dirs("app_default");
+  const auto out = dirs.out / "default.exr";
+  const auto r = run_prism({"render", "-r", "32", "24", "-s", "1", "-q", "-f", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_image_file(out).image.width, 32);
+}
+
+TEST(AppRender, AdaptiveRenderWritesTheRatePictureBesideItsOutput) {
+  const auto dir = test::make_temp_dir("sample_rate");
+  const auto scene = (bundled_scene_dir() / "cornell_spheres.json").string();
+  const auto result =
+      test::run_prism({"render", scene, "--resolution", "24", "18", "--spp", "64", "-a", "8",
+                       "0.05", "--quiet", "--output", (dir / "a.exr").string()});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto rate = read_image_file(dir / "a_rate.png");
+  EXPECT_EQ(rate.image.width, 24);
+  EXPECT_EQ(rate.image.height, 18);
+  const auto exr = read_image_file(dir / "a.exr");
+  double total = 0;
+  const auto& names = exr.image.channel_names;
+  const int channel = int(std::find(names.begin(), names.end(), "sampleCount.Y") - names.begin());
+  ASSERT_LT(channel, exr.image.channels());
+  for (int y = 0; y < 18; ++y) {
+    for (int x = 0; x < 24; ++x) total += exr.image.at(x, y, channel);
+  }
+  EXPECT_LT(total, 24.0 * 18 * 64);  // some pixels converged before 64 samples
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace prism::test
