@@ -97,6 +97,13 @@ void write_exr_file(const fs::path& path, const Image& image, const ImageMetadat
   const OIIO::TypeDesc type =
       options.pixel_type == "float" ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
   OIIO::ImageSpec spec(image.width, image.height, channels, type);
+  // A crop keeps its place: its pixels are the data window inside the full display window.
+  spec.x = image.x;
+  spec.y = image.y;
+  spec.full_x = 0;
+  spec.full_y = 0;
+  spec.full_width = image.full_width > 0 ? image.full_width : image.width;
+  spec.full_height = image.full_height > 0 ? image.full_height : image.height;
   spec.channelnames = names;
   spec.alpha_channel = 3;
   if (const auto z = std::find(names.begin(), names.end(), "Z"); z != names.end()) {

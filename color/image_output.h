@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "color/color_pipeline.h"
+#include "core/atomic_file.h"
 #include "core/image.h"
 
 // Image files one at a time: the atomic writers and the reader. A render plans and writes all
@@ -48,11 +49,7 @@ void write_display_image(const std::filesystem::path& path, const Image& image,
 /// .tiff, any case); .exr is for write_exr.
 bool is_display_image_path(const std::filesystem::path& path);
 
-/// Throws Error(kOutput) naming the path when a file cannot be created there (no file name,
-/// missing folder, not a folder, the path is a folder, no permission), found by creating and
-/// removing a hidden probe file. validate_outputs calls it for every planned file before
-/// rendering, so a long render does not fail at the end.
-void check_output_writable(const std::filesystem::path& path);
+// check_output_writable(), which the writers use, is in core/atomic_file.h.
 
 /// An image file read back through OpenImageIO.
 struct ImageFileContents {

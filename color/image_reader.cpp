@@ -35,6 +35,10 @@ ImageFileContents read_image_file(const std::filesystem::path& path) {
   contents.format = in->format_name();
   contents.image.width = spec.width;
   contents.image.height = spec.height;
+  contents.image.x = spec.x;
+  contents.image.y = spec.y;
+  contents.image.full_width = spec.full_width;
+  contents.image.full_height = spec.full_height;
   contents.image.channel_names = spec.channelnames;
   contents.image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,

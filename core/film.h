@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/image.h"
@@ -17,27 +18,111 @@ struct AovSample {
   float depth = 0.0f;  ///< distance from the ray origin to the hit
 };
 
-/// Accumulates radiance samples per pixel, with their running variance and the AOVs.
-/// add_sample() for different pixels may run concurrently; one pixel is written by one thread
-/// at a time (the tile loop guarantees it). Non-finite samples count as zero radiance and are
-/// counted, so no NaN or Inf reaches an image.
+/// A rectangle of pixels [begin, end) of an image.
+struct PixelRect {
+  glm::ivec2 begin{0, 0};
+  glm::ivec2 end{0, 0};
+
+  int width() const { return end.x - begin.x; }
+  int height() const { return end.y - begin.y; }
+  size_t pixel_count() const {
+    return size_t(std::max(0, width())) * size_t(std::max(0, height()));
+  }
+  bool empty() const { return width() <= 0 || height() <= 0; }
+  bool contains(glm::ivec2 p) const {
+    return p.x >= begin.x && p.y >= begin.y && p.x < end.x && p.y < end.y;
+  }
+  bool contains(const PixelRect& r) const {
+    return r.begin.x >= begin.x && r.begin.y >= begin.y && r.end.x <= end.x && r.end.y <= end.y;
+  }
+  bool operator==(const PixelRect&) const = default;
+};
+
+/// Signed 128-bit integer (GCC/Clang): the film's exact sums.
+using Int128 = __int128;
+
+/// Everything the film keeps of one pixel. Sums are fixed-point integers, so that adding the
+/// same samples in any order, on any thread or machine, and summing partial films, gives the
+/// same bits (floating-point addition is not associative; integer addition is). Plain data
+/// with a fixed layout: checkpoints and part files store it as it is (FilmPixel::kWords
+/// little-endian 32-bit words).
+struct FilmPixel {
+  /// Sum of radiance samples x 2^kValueShift, per channel (samples clamped to +-kValueLimit).
+  Int128 radiance[3];
+  /// Sum of squared radiance samples x 2^kSquareShift (squares clamped to kSquareLimit).
+  Int128 radiance_squared[3];
+  /// Sum of depths x 2^kValueShift (clamped to kValueLimit).
+  Int128 depth;
+  /// Sums of albedo and shading-normal components x 2^kUnitShift (components clamped to
+  /// [-1, 1]).
+  int64_t albedo[3];
+  int64_t normal[3];
+  /// Adaptive sampling: sums of the samples' luminance and its square, in sample order.
+  double illuminance;
+  double illuminance_squared;
+  uint32_t samples;     ///< samples added
+  uint32_t progress;    ///< samples of the schedule processed: the next sample index to take
+  uint32_t converged;   ///< 1 once adaptive sampling stopped the pixel
+  uint32_t unused = 0;  ///< padding, always 0
+
+  static constexpr int kValueShift = 50;
+  static constexpr double kValueLimit = 0x1p50;
+  static constexpr int kSquareShift = 40;
+  static constexpr double kSquareLimit = 0x1p60;
+  static constexpr int kUnitShift = 40;
+  static constexpr int kWords = 48;
+};
+static_assert(sizeof(FilmPixel) == FilmPixel::kWords * 4, "FilmPixel is stored word by word");
+
+/// Accumulates the camera samples of the pixels in `window` of a width x height image: exact
+/// sums of radiance, its square and the AOVs per pixel, plus the adaptive sampler's state and
+/// how far the render schedule got. add_sample() for different pixels may run concurrently;
+/// one pixel is written by one thread at a time (the tile loops guarantee it). Non-finite
+/// samples count as zero radiance and are counted, so no NaN or Inf reaches an image.
+///
+/// Precision: each sample is converted to fixed point once (truncating below 2^-50 for
+/// radiance and depth, 2^-40 for squares and unit vectors), which is exact for every float
+/// above 2^-26 (radiance, depth) and far below what any image format stores; resolve() divides
+/// the exact sums once. Radiance and depth above 2^50 (about 1e15) and squares above 2^60 are
+/// clamped; no real render reaches them.
 class Film {
  public:
+  /// A film for the whole width x height image.
   Film(int width, int height);
+  /// A film for the pixels `window` (inside the image) of a width x height image.
+  Film(int width, int height, const PixelRect& window);
 
+  /// The full image's size: camera rays are generated over it, whatever the window.
   int width() const { return width_; }
   int height() const { return height_; }
-  void add_sample(glm::ivec2 pixel, const Rgb& radiance);
-  void add_sample(glm::ivec2 pixel, const Rgb& radiance, const AovSample& aovs);
-  /// Samples whose radiance was NaN or infinite.
-  uint64_t non_finite_samples() const { return non_finite_.load(); }
-  /// Samples taken in `pixel` so far.
-  uint32_t sample_count(glm::ivec2 pixel) const { return count_[index(pixel)]; }
+  /// The pixels this film holds.
+  const PixelRect& window() const { return window_; }
 
-  /// The per-pixel means as an image with channels, in this order: R, G, B (radiance);
-  /// albedo.R/G/B; N.X/Y/Z (mean shading normal, not renormalised); Z (mean depth, 0 where
-  /// rays escape); sampleCount.Y (samples taken); variance.R/G/B (estimated variance of the
-  /// pixel mean: sample variance / n, 0 for fewer than two samples).
+  /// Adds one sample to `pixel` (inside window()).
+  void add_sample(glm::ivec2 pixel, const Rgb& radiance, const AovSample& aovs = {});
+  /// The state of `pixel` (inside window()), for the tile loops and for storage.
+  FilmPixel& pixel(glm::ivec2 p) { return pixels_[index(p)]; }
+  const FilmPixel& pixel(glm::ivec2 p) const { return pixels_[index(p)]; }
+  /// Every pixel of the window, row-major.
+  std::span<FilmPixel> pixels() { return pixels_; }
+  std::span<const FilmPixel> pixels() const { return pixels_; }
+
+  /// Samples whose radiance was NaN or infinite (counted as zero).
+  uint64_t non_finite_samples() const { return non_finite_.load(); }
+  void set_non_finite_samples(uint64_t count) { non_finite_.store(count); }
+  /// Samples taken in `pixel` so far.
+  uint32_t sample_count(glm::ivec2 p) const { return pixel(p).samples; }
+
+  /// Adds the sums and sample counts of `part` (the same image size, its window inside this
+  /// one's) to this film, and takes the larger schedule progress. Integer addition: the order
+  /// in which parts are added does not change a bit.
+  void accumulate(const Film& part);
+
+  /// The per-pixel means over the window as an image (Image::x, y give its place in the full
+  /// image) with channels, in this order: R, G, B (radiance); albedo.R/G/B; N.X/Y/Z (mean
+  /// shading normal, not renormalised); Z (mean depth, 0 where rays escape); sampleCount.Y
+  /// (samples taken); variance.R/G/B (estimated variance of the pixel mean: sample variance /
+  /// n, 0 for fewer than two samples). A pure function of the pixel states.
   Image resolve() const;
   /// Number of channels resolve() produces, and the index of the first of each group.
   static constexpr int kChannels = 14;
@@ -48,20 +133,13 @@ class Film {
   static constexpr int kVarianceChannel = 11;
 
  private:
-  size_t index(glm::ivec2 pixel) const { return size_t(pixel.y) * width_ + pixel.x; }
-
-  /// Welford's running mean and sum of squared deviations: stable in float.
-  struct PixelStats {
-    Rgb mean{0.0f};
-    Rgb m2{0.0f};
-    Rgb albedo_sum{0.0f};
-    Vec3 normal_sum{0.0f};
-    float depth_sum = 0.0f;
-  };
+  size_t index(glm::ivec2 p) const {
+    return size_t(p.y - window_.begin.y) * size_t(window_.width()) + size_t(p.x - window_.begin.x);
+  }
 
   int width_, height_;
-  std::vector<PixelStats> stats_;
-  std::vector<uint32_t> count_;
+  PixelRect window_;
+  std::vector<FilmPixel> pixels_;
   std::atomic<uint64_t> non_finite_{0};
 };
 

@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 namespace prism {
 
@@ -19,6 +20,15 @@ void parallel_for_tiles(int width, int height, int tile_size,
           body(Tile{begin, end});
         }
       });
+}
+
+void parallel_for_indices(size_t count, const std::function<void(size_t)>& body) {
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, count, 1),
+      [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+      },
+      tbb::simple_partitioner());
 }
 
 void parallel_for_range(size_t count, const std::function<void(size_t, size_t)>& body) {

@@ -20,6 +20,10 @@ struct Tile {
 void parallel_for_tiles(int width, int height, int tile_size,
                         const std::function<void(const Tile&)>& body);
 
+/// Calls body(i) for every i in [0, count) in parallel, one index per task (for items of work
+/// large enough to balance one by one, such as image tiles).
+void parallel_for_indices(size_t count, const std::function<void(size_t)>& body);
+
 /// Calls body(begin, end) over chunks of [0, count) in parallel.
 void parallel_for_range(size_t count, const std::function<void(size_t, size_t)>& body);
 

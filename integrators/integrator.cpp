@@ -9,17 +9,61 @@
 namespace prism {
 namespace {
 
-constexpr int kTileSize = 16;
+/// The tile loop of PixelIntegrator around one estimator.
+class PixelTileRenderer final : public TileRenderer {
+ public:
+  PixelTileRenderer(const RenderContext& context, std::unique_ptr<const PixelEstimator> estimator)
+      : context_(context), estimator_(std::move(estimator)) {}
+
+  void render_tile(const Tile& tile, SampleRange range, Film& film) const override;
+
+ private:
+  const RenderContext& context_;
+  std::unique_ptr<const PixelEstimator> estimator_;
+};
+
+void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& film) const {
+  const RenderContext& context = context_;
+  const glm::vec2 film_size(film.width(), film.height());
+  const int spp = std::max(1, context.spp);
+  const int batch = context.adaptive_batch;
+  const double tolerance = context.adaptive_tolerance;
+  // One sampler per tile: cheap to clone, and its values depend only on (pixel, index).
+  const std::unique_ptr<Sampler> sampler = context.sampler_prototype.clone();
+  // Adaptive sampling may stop after any batch: the sampler stratifies each batch of samples
+  // on its own, so that every prefix the stopping rule can choose is well distributed.
+  sampler->set_sample_count(batch > 0 ? std::min(batch, spp) : spp);
+  for (int y = tile.begin.y; y < tile.end.y; ++y) {
+    for (int x = tile.begin.x; x < tile.end.x; ++x) {
+      const glm::ivec2 pixel{x, y};
+      FilmPixel& state = film.pixel(pixel);
+      for (uint32_t s = std::max(range.first, state.progress); s < range.last && !state.converged;
+           ++s) {
+        sampler->start_pixel_sample(pixel, s);
+        const Vec2 film_position = (Vec2(pixel) + sampler->get_2d()) / film_size;
+        const Vec2 lens = sampler->get_2d();
+        const Ray ray = context.camera.generate_ray(film_position, lens);
+        AovSample aovs;
+        const Rgb radiance = estimator_->li(ray, *sampler, aovs);
+        film.add_sample(pixel, radiance, aovs);
+        if (batch <= 0) continue;
+        // Illuminance sums in double, in sample order: thousands of samples.
+        const double illuminance = is_finite(radiance) ? double(luminance(radiance)) : 0.0;
+        state.illuminance += illuminance;
+        state.illuminance_squared += illuminance * illuminance;
+        const uint32_t n = state.samples;
+        if (n % uint32_t(batch) != 0 || n < 2) continue;
+        const double mean = state.illuminance / n;
+        const double variance =
+            std::max(0.0, (state.illuminance_squared - state.illuminance * mean) / (n - 1));
+        if (1.96 * std::sqrt(variance / n) <= tolerance * mean) state.converged = 1;
+      }
+      state.progress = std::max(state.progress, range.last);
+    }
+  }
+}
 
 }  // namespace
-
-uint64_t Integrator::progress_total(int width, int height, int spp) const {
-  return uint64_t(height);
-}
-
-uint64_t PixelIntegrator::progress_total(int width, int height, int spp) const {
-  return uint64_t(width) * uint64_t(height);
-}
 
 AovSample hit_aovs(const Scene& scene, const Ray& ray, const Hit& hit,
                    const SurfaceInteraction& si) {
@@ -32,43 +76,17 @@ AovSample hit_aovs(const Scene& scene, const Ray& ray, const Hit& hit,
   return aovs;
 }
 
-void PixelIntegrator::render(const RenderContext& context, Film& film) const {
-  const std::unique_ptr<const PixelEstimator> estimator = prepare(context);
-  const glm::vec2 film_size(film.width(), film.height());
-  const int spp = std::max(1, context.spp);
-  const int batch = context.adaptive_batch;
-  const float tolerance = context.adaptive_tolerance;
-  parallel_for_tiles(film.width(), film.height(), kTileSize, [&](const Tile& tile) {
-    // One sampler per tile: cheap to clone, and its values depend only on (pixel, index).
-    const std::unique_ptr<Sampler> sampler = context.sampler_prototype.clone();
-    // Adaptive sampling may stop after any batch: the sampler stratifies each batch of samples
-    // on its own, so that every prefix the stopping rule can choose is well distributed.
-    sampler->set_sample_count(batch > 0 ? std::min(batch, spp) : spp);
-    for (int y = tile.begin.y; y < tile.end.y; ++y) {
-      for (int x = tile.begin.x; x < tile.end.x; ++x) {
-        const glm::ivec2 pixel{x, y};
-        // Illuminance sums for adaptive sampling, in double: thousands of samples.
-        double s1 = 0.0, s2 = 0.0;
-        for (int s = 0; s < spp; ++s) {
-          sampler->start_pixel_sample(pixel, uint32_t(s));
-          const Vec2 film_position = (Vec2(pixel) + sampler->get_2d()) / film_size;
-          const Vec2 lens = sampler->get_2d();
-          const Ray ray = context.camera.generate_ray(film_position, lens);
-          AovSample aovs;
-          const Rgb radiance = estimator->li(ray, *sampler, aovs);
-          film.add_sample(pixel, radiance, aovs);
-          if (batch <= 0) continue;
-          const double illuminance = is_finite(radiance) ? double(luminance(radiance)) : 0.0;
-          s1 += illuminance;
-          s2 += illuminance * illuminance;
-          const int n = s + 1;
-          if (n % batch != 0 || n < 2) continue;
-          const double mean = s1 / n;
-          const double variance = std::max(0.0, (s2 - s1 * s1 / n) / (n - 1));
-          if (1.96 * std::sqrt(variance / n) <= double(tolerance) * mean) break;
-        }
-      }
-    }
+std::unique_ptr<TileRenderer> PixelIntegrator::start(const RenderContext& context) const {
+  return std::make_unique<PixelTileRenderer>(context, prepare(context));
+}
+
+void Integrator::render(const RenderContext& context, Film& film) const {
+  const std::unique_ptr<const TileRenderer> renderer = start(context);
+  const SampleRange all{0, uint32_t(std::max(1, context.spp))};
+  const PixelRect& w = film.window();
+  parallel_for_tiles(w.width(), w.height(), RenderSchedule::kTileSize, [&](const Tile& local) {
+    const Tile tile{local.begin + w.begin, local.end + w.begin};
+    renderer->render_tile(tile, all, film);
     if (context.progress) {
       context.progress->update(uint64_t(tile.end.x - tile.begin.x) * (tile.end.y - tile.begin.y));
     }

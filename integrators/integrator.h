@@ -9,42 +9,60 @@
 #include "core/film.h"
 #include "core/progress.h"
 #include "core/registry.h"
+#include "core/render_schedule.h"
 #include "core/sampler.h"
 #include "core/scene.h"
 
 namespace prism {
 
 /// Everything an integrator reads while rendering, besides its own parameters. All references
-/// outlive render().
+/// outlive the render.
 struct RenderContext {
   const Scene& scene;  ///< with its environment map, if any
   const Accelerator& accel;
-  const Camera& camera;  ///< already fitted to the film's aspect ratio
+  const Camera& camera;  ///< already fitted to the image's aspect ratio
   const Sampler& sampler_prototype;
-  int spp = 1;                           ///< camera rays per pixel (-s)
+  /// Camera rays per pixel of the whole render (-s): samplers stratify over it, whichever
+  /// part of the sample range one call renders.
+  int spp = 1;
   int adaptive_batch = 0;                ///< adaptive sampling batch size, 0 = off (-a B tol)
   float adaptive_tolerance = 0.05f;      ///< adaptive sampling tolerance (-a B tol)
-  ProgressReporter* progress = nullptr;  ///< may be null; advanced as progress_total() says
+  ProgressReporter* progress = nullptr;  ///< may be null; Integrator::render() advances it
+};
+
+/// The per-render state of an integrator (lights, BSDFs, distances derived from the scene)
+/// and the rendering of one unit of work with it. Built once per render by Integrator::start(),
+/// read-only afterwards: render_tile() runs concurrently on different tiles.
+class TileRenderer {
+ public:
+  virtual ~TileRenderer() = default;
+  /// Takes the samples [range.first, range.last) of every pixel of `tile` (inside
+  /// film.window()) in sample order and adds them to `film`. Samples below a pixel's
+  /// FilmPixel::progress are already in the film and are skipped, as are pixels adaptive
+  /// sampling stopped; every pixel's progress ends at least at range.last. So the film's
+  /// content depends only on which samples were taken, never on how the work was cut, ordered,
+  /// threaded or resumed.
+  virtual void render_tile(const Tile& tile, SampleRange range, Film& film) const = 0;
 };
 
 /// Produces an image of a scene. Implementations are chosen by name from integrator_registry()
-/// and hold only the settings read from their parameters: every call of render() builds its
-/// own per-render state, so render() of one instance may run concurrently with itself.
+/// and hold only the settings read from their parameters: every render builds its own
+/// per-render state (start()), so one instance may render concurrently with itself.
 class Integrator {
  public:
   virtual ~Integrator() = default;
   virtual std::string_view name() const = 0;
-  /// Renders into `film` (whose size is the output resolution). Deterministic for a given
-  /// context: the result does not depend on the number of threads.
-  virtual void render(const RenderContext& context, Film& film) const = 0;
-  /// Units of progress render() reports for a film of this size (for ProgressReporter).
-  virtual uint64_t progress_total(int width, int height, int spp) const;
+  /// The per-render state for `context` (which outlives it), ready to render tiles.
+  virtual std::unique_ptr<TileRenderer> start(const RenderContext& context) const = 0;
+  /// Renders every sample [0, context.spp) of every pixel of film.window() in one pass of
+  /// parallel tiles, advancing context.progress by pixels. Deterministic: the result does not
+  /// depend on the number of threads. (`prism render` schedules passes itself.)
+  void render(const RenderContext& context, Film& film) const;
 };
 
-/// The per-render state of a PixelIntegrator (lights, BSDFs, distances derived from the scene)
-/// and the radiance estimate that reads it. Built once per render() by
-/// PixelIntegrator::prepare(), read-only while the tiles render: li() is called concurrently
-/// from many threads.
+/// The per-render state of a PixelIntegrator and the radiance estimate that reads it. Built
+/// once per render by PixelIntegrator::prepare(); li() is called concurrently from many
+/// threads.
 class PixelEstimator {
  public:
   virtual ~PixelEstimator() = default;
@@ -53,20 +71,19 @@ class PixelEstimator {
   virtual Rgb li(const Ray& ray, Sampler& sampler, AovSample& aovs) const = 0;
 };
 
-/// Integrators that estimate radiance independently per camera ray: the parallel tile loop,
-/// per-thread sampler clones and the camera-ray generation live here; subclasses build the
+/// Integrators that estimate radiance independently per camera ray: the tile loop, per-tile
+/// sampler clones and the camera-ray generation live here; subclasses build the
 /// PixelEstimator whose li() is called once per camera ray.
 /// The tile loop also runs adaptive sampling (RenderContext::adaptive_batch > 0): after every
-/// batch of B samples of a pixel it stops once 1.96 sigma / sqrt(n) <= tolerance * mu for the
-/// illuminance (luminance) of the samples taken.
+/// batch of B samples of a pixel it stops the pixel once 1.96 sigma / sqrt(n) <= tolerance * mu
+/// for the illuminance (luminance) of the samples taken.
 class PixelIntegrator : public Integrator {
  public:
-  void render(const RenderContext& context, Film& film) const final;
-  uint64_t progress_total(int width, int height, int spp) const override;
+  std::unique_ptr<TileRenderer> start(const RenderContext& context) const final;
 
  protected:
   /// The estimator of one render, with its per-render state built from `context` (which
-  /// outlives it). Called once per render() on the calling thread, before the first sample.
+  /// outlives it). Called once per start() on the calling thread.
   virtual std::unique_ptr<PixelEstimator> prepare(const RenderContext& context) const = 0;
 };
 

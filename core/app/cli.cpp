@@ -110,6 +110,16 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("--set", o.set, "component parameter key=value, e.g. bvh.max_leaf_size=4")
       ->allow_extra_args(false);
   render.add_flag("-q,--quiet", o.quiet, "no progress output");
+  render.add_option("--time-limit", o.time_limit,
+                    "render at most this many seconds (whole passes), then write the image");
+  render.add_option("--crop", o.crop, "render only the pixels X0 <= x < X1, Y0 <= y < Y1")
+      ->type_name("X0 Y0 X1 Y1");
+  render
+      .add_option("--samples", o.sample_range,
+                  "render only the samples FIRST <= s < LAST of every pixel (of -s in all)")
+      ->type_name("FIRST LAST");
+  render.add_option("--pass-samples", o.pass_samples,
+                    "samples per pixel in each pass (default: spp / 64, at least 1)");
   render.add_flag("--literal-camera", o.literal_camera,
                   "COLLADA: use the file's camera, not the homework framing");
   add_color_options(render, o.color);

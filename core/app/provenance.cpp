@@ -25,6 +25,16 @@ ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& pa
       {"prism:camera_samples", fmt::format("{:.0f}", record.camera_samples)},
       {"prism:non_finite_samples", std::to_string(record.non_finite_samples)},
   };
+  metadata.emplace_back("prism:samples",
+                        fmt::format("{} {}", settings.samples.first, settings.samples.last));
+  metadata.emplace_back("prism:passes",
+                        fmt::format("{} of {}", record.passes_complete, record.pass_count));
+  metadata.emplace_back("prism:stoppedBy", record.stopped_by.empty() ? "-" : record.stopped_by);
+  if (settings.window != PixelRect{{0, 0}, {settings.width, settings.height}}) {
+    const PixelRect& w = settings.window;
+    metadata.emplace_back("prism:crop",
+                          fmt::format("{} {} {} {}", w.begin.x, w.begin.y, w.end.x, w.end.y));
+  }
   if (!record.environment.empty()) {
     metadata.emplace_back("prism:environment", record.environment);
     metadata.emplace_back("prism:environmentColorSpace", record.environment_space);

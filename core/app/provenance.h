@@ -19,11 +19,17 @@ struct RenderRecord {
   std::string command_line;
   std::string environment;        ///< -e file as given; empty: no environment map
   std::string environment_space;  ///< colour space its values were read as
+  int passes_complete = 0;        ///< passes of the schedule every pixel has
+  int pass_count = 0;             ///< passes of the schedule
+  /// Why the render ended before its last pass: "time limit", "SIGINT", "SIGTERM"; empty when
+  /// it finished.
+  std::string stopped_by;
 };
 
 /// The prism:* header attributes (version, scene, components, settings, timings, --set
-/// parameters, command line, non-finite samples, and prism:environment /
-/// prism:environmentColorSpace when an environment map was used) of an output file. The image
+/// parameters, command line, non-finite samples, the sample range, passes and what stopped the
+/// render, prism:crop for a crop, and prism:environment / prism:environmentColorSpace when an
+/// environment map was used) of an output file. The image
 /// writers add the colour attributes (config, its hash, spaces, display, view) themselves.
 ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& params,
                               const RenderRecord& record);

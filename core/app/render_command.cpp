@@ -14,13 +14,14 @@
 #include "core/app/component_params.h"
 #include "core/app/environment_map.h"
 #include "core/app/integrator_aliases.h"
+#include "core/app/interrupts.h"
+#include "core/app/progressive_render.h"
 #include "core/app/provenance.h"
 #include "core/film.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/samplers.h"
 #include "core/strings.h"
-#include "core/timing.h"
 #include "integrators/integrator.h"
 #include "scenes/scene_loader.h"
 
@@ -46,10 +47,15 @@ std::string summary_line(const std::filesystem::path& scene, const RenderSetting
   for (const auto& file : outputs.files) {
     if (file.kind != OutputKind::kSampleRate) files.push_back(file.path.string());
   }
+  const std::string stopped =
+      record.stopped_by.empty()
+          ? ""
+          : fmt::format(" (stopped by {} after {} of {} passes)", record.stopped_by,
+                        record.passes_complete, record.pass_count);
   return fmt::format(
-      "{}: {} build {:.4g} ms, {} render {}x{} at {} spp {:.4g} ms ({:.3g} Msamples/s) -> {}",
+      "{}: {} build {:.4g} ms, {} render {}x{} at {} spp {:.4g} ms ({:.3g} Msamples/s){} -> {}",
       scene.filename().string(), settings.accelerator, record.build_ms, settings.integrator,
-      settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6,
+      settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6, stopped,
       join(files));
 }
 
@@ -122,10 +128,9 @@ int run_render_command(const RenderOptions& options) {
   accel->build(scene.geometry);
   record.build_ms = accel->stats().build_ms;
 
-  Film film(settings.width, settings.height);
-  ProgressReporter progress(
-      "rendering", integrator->progress_total(settings.width, settings.height, settings.spp),
-      options.quiet);
+  const RenderSchedule schedule(settings.window, settings.samples, settings.pass_samples);
+  Film film(settings.width, settings.height, settings.window);
+  ProgressReporter progress("rendering", samples_remaining(schedule, film), options.quiet);
   const RenderContext context{
       .scene = scene,
       .accel = *accel,
@@ -134,10 +139,22 @@ int run_render_command(const RenderOptions& options) {
       .spp = settings.spp,
       .adaptive_batch = settings.adaptive_batch,
       .adaptive_tolerance = settings.adaptive_tolerance,
-      .progress = &progress,
+      .progress = nullptr,
   };
-  record.render_ms = time_ms([&] { integrator->render(context, film); });
+  const std::unique_ptr<const TileRenderer> renderer = integrator->start(context);
+  // From here a first SIGINT/SIGTERM stops the render and writes what it has.
+  const InterruptHandlers interrupts;
+  const ProgressiveResult result = render_progressively(
+      *renderer, schedule, film,
+      ProgressiveOptions{.time_limit_seconds = options.time_limit.value_or(0.0),
+                         .stop_signal = &interrupts.stop_signal(),
+                         .progress = &progress});
   progress.done();
+  record.render_ms = result.seconds * 1e3;
+  record.passes_complete = result.passes_complete;
+  record.pass_count = schedule.pass_count();
+  if (result.end == RenderEnd::kTimeLimit) record.stopped_by = "time limit";
+  if (result.end == RenderEnd::kSignal) record.stopped_by = signal_name(interrupts.stop_signal());
   record.non_finite_samples = film.non_finite_samples();
   if (record.non_finite_samples > 0) {
     std::fprintf(stderr, "prism: warning: %llu NaN or infinite samples counted as zero\n",
@@ -149,6 +166,8 @@ int run_render_command(const RenderOptions& options) {
   const ImageMetadata metadata = make_provenance(settings, params, record);
   write_outputs(outputs, image, metadata, pipeline);
   std::printf("%s\n", summary_line(scene_path, settings, outputs, record).c_str());
+  if (const int signal = interrupts.stop_signal(); signal != 0)
+    return interrupted_exit_code(signal);
   return kExitSuccess;
 }
 

@@ -102,6 +102,34 @@ void validate_render_options(const RenderOptions& options) {
   if (!options.camera_file.empty()) {
     bad_option("--camera-file (-c)", "camera settings files are not supported yet");
   }
+  if (options.time_limit && !(std::isfinite(*options.time_limit) && *options.time_limit > 0)) {
+    bad_option("--time-limit", "must be a finite number of seconds > 0");
+  }
+  if (!(std::isfinite(options.checkpoint_interval) && options.checkpoint_interval > 0)) {
+    bad_option("--checkpoint-interval", "must be a finite number of seconds > 0");
+  }
+  check_int(options.pass_samples, "--pass-samples", 1, kMaxSpp);
+  if (options.crop) {
+    const auto [x0, y0, x1, y1] = *options.crop;
+    if (x0 < 0 || y0 < 0 || x1 <= x0 || y1 <= y0) {
+      bad_option("--crop", "X0 Y0 X1 Y1 must satisfy 0 <= X0 < X1 and 0 <= Y0 < Y1, got " +
+                               std::to_string(x0) + " " + std::to_string(y0) + " " +
+                               std::to_string(x1) + " " + std::to_string(y1));
+    }
+  }
+  if (options.sample_range) {
+    const auto [first, last] = *options.sample_range;
+    if (first < 0 || last <= first || last > kMaxSpp) {
+      bad_option("--samples",
+                 "FIRST LAST must satisfy 0 <= FIRST < LAST <= " + std::to_string(kMaxSpp) +
+                     ", got " + std::to_string(first) + " " + std::to_string(last));
+    }
+    // Where adaptive sampling stops a pixel depends on every sample before: a range cannot
+    // know them, and parts could not be summed.
+    if (options.adaptive) {
+      bad_option("--samples", "cannot be combined with adaptive sampling (-a)");
+    }
+  }
 }
 
 void validate_thread_count(int threads) { check_int(threads, "--threads (-t)", 0, kMaxThreads); }
@@ -135,6 +163,26 @@ RenderSettings resolve_render_settings(const RenderOptions& options, const Scene
     s.adaptive_batch = options.adaptive->first;
     s.adaptive_tolerance = static_cast<float>(options.adaptive->second);
   }
+  s.window = PixelRect{{0, 0}, {s.width, s.height}};
+  if (options.crop) {
+    const auto [x0, y0, x1, y1] = *options.crop;
+    if (x1 > s.width || y1 > s.height) {
+      bad_option("--crop", "X1 Y1 (" + std::to_string(x1) + " " + std::to_string(y1) +
+                               ") must be inside the image (" + std::to_string(s.width) + " x " +
+                               std::to_string(s.height) + ")");
+    }
+    s.window = PixelRect{{x0, y0}, {x1, y1}};
+  }
+  s.samples = SampleRange{0, uint32_t(s.spp)};
+  if (options.sample_range) {
+    const auto [first, last] = *options.sample_range;
+    if (last > s.spp) {
+      bad_option("--samples", "LAST (" + std::to_string(last) + ") must be at most the samples " +
+                                  "per pixel (" + std::to_string(s.spp) + ")");
+    }
+    s.samples = SampleRange{uint32_t(first), uint32_t(last)};
+  }
+  s.pass_samples = uint32_t(options.pass_samples.value_or(std::max(1, s.spp / kDefaultPasses)));
   return s;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -11,6 +12,7 @@
 #include "color/image_output.h"
 #include "color/output_plan.h"
 #include "core/param_set.h"
+#include "core/render_schedule.h"
 #include "core/scene.h"
 #include "integrators/integrator_defaults.h"
 
@@ -62,6 +64,13 @@ struct RenderOptions {
   bool quiet = false;
   bool literal_camera = false;
   std::vector<std::string> set;  ///< --set key=value, in order
+  /// Production runs (docs/PRODUCTION.md).
+  std::optional<double> time_limit;                 ///< --time-limit SECONDS
+  std::string checkpoint;                           ///< --checkpoint FILE; empty: none
+  double checkpoint_interval = 60.0;                ///< --checkpoint-interval SECONDS
+  std::optional<std::array<int, 4>> crop;           ///< --crop X0 Y0 X1 Y1
+  std::optional<std::pair<int, int>> sample_range;  ///< --samples FIRST LAST
+  std::optional<int> pass_samples;                  ///< --pass-samples N
   ColorOptions color;
   ExrOptions exr_options;
   std::string command_line;  ///< for provenance metadata
@@ -84,7 +93,14 @@ struct RenderSettings {
   uint64_t seed = kDefaultSeed;
   int adaptive_batch = 0;  ///< 0: adaptive sampling off
   float adaptive_tolerance = 0.05f;
+  PixelRect window;           ///< the pixels rendered (--crop; else the whole image)
+  SampleRange samples;        ///< the samples rendered of every pixel (--samples; else all)
+  uint32_t pass_samples = 1;  ///< samples per pixel and pass
 };
+
+/// Samples per pass when --pass-samples is not given: spp / kDefaultPasses, at least 1, so that
+/// a render has about that many passes to stop, checkpoint or report after.
+inline constexpr int kDefaultPasses = 64;
 
 /// Checks every option value that does not depend on the scene: ranges, finite numbers, features
 /// not supported yet (--set is checked by parse_param_assignments(), the output files by

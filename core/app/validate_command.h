@@ -8,8 +8,8 @@ namespace prism {
 
 /// What `prism validate` checks.
 struct ValidateOptions {
-  /// Scene file or generated mesh (see load_scene_or_generated()); may be empty with --replay, whose
-  /// file names its scene.
+  /// Scene file or generated mesh (see load_scene_or_generated()); may be empty with --replay,
+  /// whose file names its scene.
   std::string scene;
   size_t rays = 100000;            ///< rays per set (P, S, D1, D2, R and feature rays F)
   std::string accel = "bvh";       ///< --accel

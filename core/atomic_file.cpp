@@ -1,0 +1,127 @@
+#include "core/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+
+namespace prism {
+namespace fs = std::filesystem;
+namespace {
+
+/// Temporary paths a signal handler may have to delete: fixed storage, no allocation, slots
+/// claimed and released atomically.
+constexpr int kSlots = 32;
+constexpr size_t kPathBytes = 4096;
+struct PendingSlot {
+  std::atomic<bool> in_use{false};
+  std::atomic<bool> ready{false};
+  char path[kPathBytes];
+};
+std::array<PendingSlot, kSlots> pending_slots;
+
+int claim_slot(const fs::path& path) {
+  const std::string text = path.string();
+  if (text.size() >= kPathBytes) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (pending_slots[i].in_use.compare_exchange_strong(expected, true)) {
+      std::memcpy(pending_slots[i].path, text.c_str(), text.size() + 1);
+      pending_slots[i].ready.store(true);
+      return i;
+    }
+  }
+  return -1;  // more than kSlots files at once: that one is not cleaned up by a signal
+}
+
+void release_slot(int slot) {
+  if (slot < 0) return;
+  pending_slots[slot].ready.store(false);
+  pending_slots[slot].in_use.store(false);
+}
+
+fs::path folder_of(const fs::path& path) {
+  return path.has_parent_path() ? path.parent_path() : fs::path(".");
+}
+
+fs::path temp_path_for(const fs::path& target) {
+  static std::atomic<unsigned> counter{0};
+  std::string name = ".";
+  name += target.filename().string();
+  name += ".prism-tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+  return folder_of(target) / name;
+}
+
+Error output_error(const fs::path& path, const std::string& message) {
+  return Error(ErrorKind::kOutput, message, ErrorLocation{path.string(), 0, {}});
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(const fs::path& target)
+    : target_(target), temp_(temp_path_for(target)), slot_(claim_slot(temp_)) {}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove(temp_, ec);
+  }
+  release_slot(slot_);
+}
+
+void AtomicFile::commit() {
+  const int fd = ::open(temp_.c_str(), O_RDONLY);
+  if (fd < 0 || ::fsync(fd) != 0) {
+    const std::string reason = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    throw output_error(target_, "cannot flush the written file to disk: " + reason);
+  }
+  ::close(fd);
+  std::error_code ec;
+  fs::rename(temp_, target_, ec);
+  if (ec) throw output_error(target_, "cannot replace the file: " + ec.message());
+  committed_ = true;
+  release_slot(slot_);
+  slot_ = -1;
+  // Make the rename itself durable; a failure here loses nothing already written.
+  if (const int dir = ::open(folder_of(target_).c_str(), O_RDONLY | O_DIRECTORY); dir >= 0) {
+    ::fsync(dir);
+    ::close(dir);
+  }
+}
+
+void check_output_writable(const fs::path& path) {
+  const fs::path folder = folder_of(path);
+  std::error_code ec;
+  if (path.filename().empty()) throw output_error(path, "the output path names no file");
+  if (!fs::exists(folder, ec)) {
+    throw output_error(path, "the output folder '" + folder.string() + "' does not exist");
+  }
+  if (!fs::is_directory(folder, ec)) {
+    throw output_error(path, "'" + folder.string() + "' is not a folder");
+  }
+  if (fs::is_directory(path, ec)) throw output_error(path, "the output path is a folder");
+  // Creating a file is the only reliable test (permissions, read-only mounts, ACLs, quotas).
+  const fs::path probe = temp_path_for(path);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) {
+    throw output_error(path, "cannot create files in the output folder '" + folder.string() +
+                                 "': " + std::strerror(errno));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+void remove_pending_temp_files() noexcept {
+  for (PendingSlot& slot : pending_slots) {
+    if (slot.ready.load()) ::unlink(slot.path);
+  }
+}
+
+}  // namespace prism

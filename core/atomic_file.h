@@ -1,0 +1,41 @@
+#pragma once
+
+#include <filesystem>
+
+namespace prism {
+
+/// A file that replaces `target` only once it is complete and on disk. Write to temp_path() (a
+/// hidden file beside the target, unique per process and object), then commit(): fsync, rename
+/// over the target, fsync of the folder. Destroyed without a commit, it removes the temporary
+/// file, so a failure leaves the previous target (or none) and never a partial file. While it
+/// exists its temporary path is registered for remove_pending_temp_files().
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::filesystem::path& target);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  const std::filesystem::path& target() const { return target_; }
+  const std::filesystem::path& temp_path() const { return temp_; }
+  /// Makes the written temporary file the target. Throws Error(kOutput) naming the target.
+  void commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temp_;
+  int slot_ = -1;
+  bool committed_ = false;
+};
+
+/// Throws Error(kOutput) naming `path` when a file cannot be created there: no file name, a
+/// missing folder, a folder that is not one, a path that is a folder, or a folder where no file
+/// can be created (found by creating and removing a hidden probe file: the only test that
+/// covers permissions, read-only mounts, ACLs and quotas). Called before long work.
+void check_output_writable(const std::filesystem::path& path);
+
+/// Deletes the temporary file of every AtomicFile alive, with unlink() only: safe in a signal
+/// handler, for a process that must stop at once without leaving partial files.
+void remove_pending_temp_files() noexcept;
+
+}  // namespace prism
