@@ -59,8 +59,8 @@ void write_exr(const fs::path& path, const Image& image, const ImageMetadata& me
 
 namespace color_detail {
 
-void write_exr_file(const fs::path& path, const Image& image, const ImageMetadata& metadata,
-                    const ColorPipeline& pipeline, const ExrOptions& options) {
+ExrImage prepare_exr(const fs::path& path, const Image& image, const ImageMetadata& metadata,
+                     const ColorPipeline& pipeline, const ExrOptions& options) {
   PRISM_CHECK(is_valid_pixel_type(options.pixel_type) && is_valid_compression(options.compression));
   PRISM_CHECK(image.width > 0 && image.height > 0);
   PRISM_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels());
@@ -138,7 +138,13 @@ void write_exr_file(const fs::path& path, const Image& image, const ImageMetadat
     spec.attribute("prism:halfClampedValues", int(std::min<size_t>(clamped, INT_MAX)));
   }
   spec.attribute("compression", options.compression);
-  write_atomically(path, "openexr", spec, OIIO::TypeDesc::FLOAT, pixels.data());
+  return ExrImage{std::move(spec), std::move(pixels)};
+}
+
+void write_exr_file(const fs::path& path, const Image& image, const ImageMetadata& metadata,
+                    const ColorPipeline& pipeline, const ExrOptions& options) {
+  const ExrImage exr = prepare_exr(path, image, metadata, pipeline, options);
+  write_atomically(path, "openexr", exr.spec, OIIO::TypeDesc::FLOAT, exr.pixels.data());
 }
 
 }  // namespace color_detail

@@ -24,15 +24,31 @@ Error output_error(const fs::path& path, const std::string& message) {
 
 void write_atomically(const fs::path& target, const std::string& format,
                       const OIIO::ImageSpec& spec, const OIIO::TypeDesc& type, const void* pixels) {
+  write_atomically(target, format, {Subimage{spec, type, pixels}});
+}
+
+void write_atomically(const fs::path& target, const std::string& format,
+                      const std::vector<Subimage>& subimages) {
+  PRISM_CHECK(!subimages.empty());
   AtomicFile temp(target);
   try {
     auto out = OIIO::ImageOutput::create(format);
     if (!out) throw output_error(target, "no " + format + " writer: " + OIIO::geterror());
-    const bool opened = out->open(temp.temp_path().string(), spec);
+    std::vector<OIIO::ImageSpec> specs;
+    for (const Subimage& s : subimages) specs.push_back(s.spec);
+    const bool opened = subimages.size() == 1
+                            ? out->open(temp.temp_path().string(), specs[0])
+                            : out->open(temp.temp_path().string(), int(specs.size()), specs.data());
     // The folder was checked before the work; if it went away or became read-only since, say
     // so as that check does rather than with OpenImageIO's message about the temporary file.
     if (!opened) check_output_writable(target);
-    const bool ok = opened && out->write_image(type, pixels) && out->close();
+    bool ok = opened;
+    for (size_t i = 0; ok && i < subimages.size(); ++i) {
+      if (i > 0)
+        ok = out->open(temp.temp_path().string(), specs[i], OIIO::ImageOutput::AppendSubimage);
+      ok = ok && out->write_image(subimages[i].type, subimages[i].pixels);
+    }
+    ok = ok && out->close();
     if (!ok) {
       const std::string reason = out->geterror();
       throw output_error(target, "cannot write the " + format +

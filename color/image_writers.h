@@ -26,6 +26,25 @@ Error output_error(const std::filesystem::path& path, const std::string& message
 void write_atomically(const std::filesystem::path& target, const std::string& format,
                       const OIIO::ImageSpec& spec, const OIIO::TypeDesc& type, const void* pixels);
 
+/// One image of a multi-image file: its header and interleaved pixels of `type`.
+struct Subimage {
+  OIIO::ImageSpec spec;
+  OIIO::TypeDesc type;
+  const void* pixels;
+};
+/// write_atomically() for a file of several images (a multi-part OpenEXR file), in order.
+void write_atomically(const std::filesystem::path& target, const std::string& format,
+                      const std::vector<Subimage>& subimages);
+
+/// The header and float pixels of the scene-linear EXR of `image`, as write_exr writes it.
+struct ExrImage {
+  OIIO::ImageSpec spec;
+  std::vector<float> pixels;
+};
+ExrImage prepare_exr(const std::filesystem::path& path, const Image& image,
+                     const ImageMetadata& metadata, const ColorPipeline& pipeline,
+                     const ExrOptions& options);
+
 /// Throws Error(kInternal) naming `path` when `values` holds a NaN or Inf: the film drops them,
 /// so one here is a bug to report, not a value to patch.
 void check_finite(const std::vector<float>& values, const std::filesystem::path& path);

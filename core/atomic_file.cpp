@@ -1,11 +1,13 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -58,6 +60,28 @@ fs::path temp_path_for(const fs::path& target) {
   return folder_of(target) / name;
 }
 
+/// Removes the temporary files of `target` that processes no longer running left behind (a
+/// process killed with SIGKILL cannot remove its own).
+void remove_stale_temp_files(const fs::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".prism-tmp-";
+  std::error_code ec;
+  for (fs::directory_iterator it(folder_of(target), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string rest = name.substr(prefix.size());
+    const size_t dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || rest.find_first_not_of("0123456789") != dash) {
+      continue;
+    }
+    const long pid = std::strtol(rest.substr(0, dash).c_str(), nullptr, 10);
+    if (pid <= 0 || pid == long(getpid())) continue;
+    if (::kill(pid_t(pid), 0) == -1 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
 Error output_error(const fs::path& path, const std::string& message) {
   return Error(ErrorKind::kOutput, message, ErrorLocation{path.string(), 0, {}});
 }
@@ -65,7 +89,9 @@ Error output_error(const fs::path& path, const std::string& message) {
 }  // namespace
 
 AtomicFile::AtomicFile(const fs::path& target)
-    : target_(target), temp_(temp_path_for(target)), slot_(claim_slot(temp_)) {}
+    : target_(target), temp_(temp_path_for(target)), slot_(claim_slot(temp_)) {
+  remove_stale_temp_files(target);
+}
 
 AtomicFile::~AtomicFile() {
   if (!committed_) {

@@ -8,7 +8,8 @@ namespace prism {
 /// hidden file beside the target, unique per process and object), then commit(): fsync, rename
 /// over the target, fsync of the folder. Destroyed without a commit, it removes the temporary
 /// file, so a failure leaves the previous target (or none) and never a partial file. While it
-/// exists its temporary path is registered for remove_pending_temp_files().
+/// exists its temporary path is registered for remove_pending_temp_files(). Creating one also
+/// removes the temporary files of the same target that dead processes left (SIGKILL).
 class AtomicFile {
  public:
   explicit AtomicFile(const std::filesystem::path& target);

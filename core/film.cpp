@@ -48,6 +48,22 @@ Film::Film(int width, int height, const PixelRect& window)
   pixels_.resize(window.pixel_count());
 }
 
+Film::Film(Film&& other) noexcept
+    : width_(other.width_),
+      height_(other.height_),
+      window_(other.window_),
+      pixels_(std::move(other.pixels_)),
+      non_finite_(other.non_finite_.load()) {}
+
+Film& Film::operator=(Film&& other) noexcept {
+  width_ = other.width_;
+  height_ = other.height_;
+  window_ = other.window_;
+  pixels_ = std::move(other.pixels_);
+  non_finite_.store(other.non_finite_.load());
+  return *this;
+}
+
 void Film::add_sample(glm::ivec2 p, const Rgb& radiance, const AovSample& aovs) {
   FilmPixel& s = pixel(p);
   ++s.samples;

@@ -74,6 +74,12 @@ struct FilmPixel {
 };
 static_assert(sizeof(FilmPixel) == FilmPixel::kWords * 4, "FilmPixel is stored word by word");
 
+/// Largest film prism makes or reads back: large enough for any real render, small enough that
+/// counters cannot overflow and a typo or a hostile file cannot ask for a film (about 200 bytes
+/// per pixel, plus the images written from it) that exhausts memory.
+inline constexpr int kMaxFilmSide = 16384;
+inline constexpr long long kMaxFilmPixels = 1LL << 25;  // 8K UHD (7680 x 4320) fits
+
 /// Accumulates the camera samples of the pixels in `window` of a width x height image: exact
 /// sums of radiance, its square and the AOVs per pixel, plus the adaptive sampler's state and
 /// how far the render schedule got. add_sample() for different pixels may run concurrently;
@@ -91,6 +97,8 @@ class Film {
   Film(int width, int height);
   /// A film for the pixels `window` (inside the image) of a width x height image.
   Film(int width, int height, const PixelRect& window);
+  Film(Film&& other) noexcept;
+  Film& operator=(Film&& other) noexcept;
 
   /// The full image's size: camera rays are generated over it, whatever the window.
   int width() const { return width_; }

@@ -1,5 +1,9 @@
 #include "core/strings.h"
 
+#include <cstdio>
+
+#include "core/hash.h"
+
 namespace prism {
 
 std::string to_lower(std::string_view text) {
@@ -23,6 +27,12 @@ std::string join(std::span<const std::string> items, std::string_view separator,
     out += items[i];
   }
   return out;
+}
+
+std::string hex64(uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(value));
+  return text;
 }
 
 }  // namespace prism

@@ -112,6 +112,13 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_flag("-q,--quiet", o.quiet, "no progress output");
   render.add_option("--time-limit", o.time_limit,
                     "render at most this many seconds (whole passes), then write the image");
+  render.add_option("--checkpoint", o.checkpoint,
+                    "save the render state to FILE (an EXR) every --checkpoint-interval seconds "
+                    "and when stopped");
+  render.add_option("--checkpoint-interval", o.checkpoint_interval, "seconds between checkpoints")
+      ->capture_default_str();
+  render.add_option("--resume", o.resume,
+                    "continue the render saved in FILE with its options (SCENE not needed)");
   render.add_option("--crop", o.crop, "render only the pixels X0 <= x < X1, Y0 <= y < Y1")
       ->type_name("X0 Y0 X1 Y1");
   render

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <optional>
 
@@ -17,6 +18,8 @@
 #include "core/app/interrupts.h"
 #include "core/app/progressive_render.h"
 #include "core/app/provenance.h"
+#include "core/app/render_state.h"
+#include "core/app/resume.h"
 #include "core/film.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -74,14 +77,37 @@ double total_camera_samples(const Image& image, const RenderSettings& settings) 
   return total;
 }
 
+/// Whether the render is a part of a frame: a crop or a sample range.
+bool is_part(const RenderSettings& settings) {
+  return settings.window != PixelRect{{0, 0}, {settings.width, settings.height}} ||
+         settings.samples != SampleRange{0, uint32_t(settings.spp)};
+}
+
+/// The options a state file keeps: paths absolute (the render may resume from another folder),
+/// the output the plan resolved.
+RenderOptions stored_options(const RenderOptions& options, const OutputPlan& outputs) {
+  RenderOptions stored = options;
+  if (stored.output.empty()) stored.output = outputs.files.front().path.string();
+  stored.resume.clear();
+  return with_absolute_paths(stored);
+}
+
 }  // namespace
 
-int run_render_command(const RenderOptions& options) {
+int run_render_command(const RenderOptions& given) {
+  // --resume: the checkpoint's options, with only run controls from the command line.
+  std::optional<RenderState> resumed;
+  RenderOptions options = given;
+  if (!given.resume.empty()) {
+    resumed = read_render_state(given.resume);
+    options = resumed_options(given, resumed->record, given.resume);
+  }
   // Every check that needs no file comes first, so that a typo costs nothing.
   validate_render_options(options);
   // Every file to write, checked (extensions, EXR encoding, writable folders) before the work.
   const OutputPlan outputs = resolve_output_plan(options);
   validate_outputs(outputs);
+  if (!options.checkpoint.empty()) check_output_writable(options.checkpoint);
   ParamSet params = parse_param_assignments(options.set);
   ThreadLimit thread_limit(options.threads);
   const std::unique_ptr<Accelerator> accel =
@@ -105,6 +131,9 @@ int run_render_command(const RenderOptions& options) {
                                          .file = options.environment_map,
                                          .color_space = environment.color_space};
   }
+  // What decides every pixel: a resumed render must be the one its checkpoint started.
+  const nlohmann::json identity = render_identity(options, scene, pipeline);
+  if (resumed) check_resume_identity(identity, resumed->record, given.resume);
 
   // Every component exists before the (possibly long) build, so mistyped names and --set keys
   // fail fast. -l, -m, -H (and the scene's max_depth) reach the integrator as its parameters.
@@ -129,7 +158,40 @@ int run_render_command(const RenderOptions& options) {
   record.build_ms = accel->stats().build_ms;
 
   const RenderSchedule schedule(settings.window, settings.samples, settings.pass_samples);
-  Film film(settings.width, settings.height, settings.window);
+  Film film =
+      resumed ? std::move(resumed->film) : Film(settings.width, settings.height, settings.window);
+  if (film.width() != settings.width || film.height() != settings.height ||
+      film.window() != settings.window) {
+    throw Error(ErrorKind::kInput, "the checkpoint's film does not fit its options",
+                ErrorLocation{given.resume, 0, "--resume"});
+  }
+  const double earlier_ms = resumed ? resumed->record.render_ms : 0.0;
+  RenderStateRecord state{.identity = identity,
+                          .options = stored_options(options, outputs),
+                          .window = settings.window,
+                          .samples = settings.samples,
+                          .pass_samples = settings.pass_samples,
+                          .width = settings.width,
+                          .height = settings.height,
+                          .spp = settings.spp,
+                          .render_ms = earlier_ms};
+  const auto finish_record = [&](const ProgressiveResult& result, const Film& f) {
+    record.render_ms = earlier_ms + result.seconds * 1e3;
+    record.passes_complete = result.passes_complete;
+    record.pass_count = schedule.pass_count();
+    record.non_finite_samples = f.non_finite_samples();
+  };
+  const auto save_checkpoint = [&](const Film& f, double run_seconds) {
+    state.render_ms = earlier_ms + run_seconds * 1e3;
+    RenderRecord snapshot = record;
+    snapshot.render_ms = state.render_ms;
+    snapshot.passes_complete = passes_complete(schedule, f);
+    snapshot.pass_count = schedule.pass_count();
+    snapshot.non_finite_samples = f.non_finite_samples();
+    write_render_state(options.checkpoint, f, state, make_provenance(settings, params, snapshot),
+                       pipeline);
+  };
+
   ProgressReporter progress("rendering", samples_remaining(schedule, film), options.quiet);
   const RenderContext context{
       .scene = scene,
@@ -144,18 +206,26 @@ int run_render_command(const RenderOptions& options) {
   const std::unique_ptr<const TileRenderer> renderer = integrator->start(context);
   // From here a first SIGINT/SIGTERM stops the render and writes what it has.
   const InterruptHandlers interrupts;
-  const ProgressiveResult result = render_progressively(
-      *renderer, schedule, film,
-      ProgressiveOptions{.time_limit_seconds = options.time_limit.value_or(0.0),
+  const auto run_start = std::chrono::steady_clock::now();
+  ProgressiveOptions run{.time_limit_seconds = options.time_limit.value_or(0.0),
                          .stop_signal = &interrupts.stop_signal(),
-                         .progress = &progress});
+                         .checkpoint_interval_seconds = options.checkpoint_interval,
+                         .progress = &progress};
+  if (!options.checkpoint.empty()) {
+    run.checkpoint = [&](const Film& f) {
+      save_checkpoint(
+          f, std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count());
+    };
+  }
+  const ProgressiveResult result = render_progressively(*renderer, schedule, film, run);
   progress.done();
-  record.render_ms = result.seconds * 1e3;
-  record.passes_complete = result.passes_complete;
-  record.pass_count = schedule.pass_count();
+  finish_record(result, film);
   if (result.end == RenderEnd::kTimeLimit) record.stopped_by = "time limit";
   if (result.end == RenderEnd::kSignal) record.stopped_by = signal_name(interrupts.stop_signal());
-  record.non_finite_samples = film.non_finite_samples();
+  // A stopped render can be continued: its checkpoint holds every sample taken.
+  if (result.end != RenderEnd::kComplete && !options.checkpoint.empty()) {
+    save_checkpoint(film, result.seconds);
+  }
   if (record.non_finite_samples > 0) {
     std::fprintf(stderr, "prism: warning: %llu NaN or infinite samples counted as zero\n",
                  static_cast<unsigned long long>(record.non_finite_samples));
@@ -164,10 +234,20 @@ int run_render_command(const RenderOptions& options) {
   const Image image = film.resolve();
   record.camera_samples = total_camera_samples(image, settings);
   const ImageMetadata metadata = make_provenance(settings, params, record);
-  write_outputs(outputs, image, metadata, pipeline);
+  if (is_part(settings) && outputs.files.front().kind == OutputKind::kSceneLinearExr) {
+    // A part of a frame keeps its exact sums, for `prism merge`.
+    state.render_ms = record.render_ms;
+    write_render_state(outputs.files.front().path, film, state, metadata, pipeline);
+    OutputPlan rest = outputs;
+    rest.files.erase(rest.files.begin());
+    write_outputs(rest, image, metadata, pipeline);
+  } else {
+    write_outputs(outputs, image, metadata, pipeline);
+  }
   std::printf("%s\n", summary_line(scene_path, settings, outputs, record).c_str());
-  if (const int signal = interrupts.stop_signal(); signal != 0)
+  if (const int signal = interrupts.stop_signal(); signal != 0) {
     return interrupted_exit_code(signal);
+  }
   return kExitSuccess;
 }
 

@@ -30,11 +30,10 @@ inline constexpr int kDefaultHeight = 360;
 inline constexpr int kDefaultSpp = 16;
 inline constexpr uint64_t kDefaultSeed = 0;
 
-/// Bounds on option values: large enough for any real render, small enough that counters cannot
-/// overflow and a typo cannot ask for a film (with its AOVs and the images written from it, over
-/// 100 bytes per pixel) that exhausts memory.
-inline constexpr int kMaxResolution = 16384;
-inline constexpr long long kMaxPixels = 1LL << 25;  // 8K UHD (7680 x 4320) fits
+/// Bounds on option values: the film's limits (core/film.h), and counts large enough for any
+/// real render, small enough that counters cannot overflow.
+inline constexpr int kMaxResolution = kMaxFilmSide;
+inline constexpr long long kMaxPixels = kMaxFilmPixels;
 inline constexpr int kMaxSpp = 1 << 20;
 inline constexpr int kMaxThreads = 4096;
 
@@ -67,6 +66,7 @@ struct RenderOptions {
   /// Production runs (docs/PRODUCTION.md).
   std::optional<double> time_limit;                 ///< --time-limit SECONDS
   std::string checkpoint;                           ///< --checkpoint FILE; empty: none
+  std::string resume;                               ///< --resume FILE; empty: a new render
   double checkpoint_interval = 60.0;                ///< --checkpoint-interval SECONDS
   std::optional<std::array<int, 4>> crop;           ///< --crop X0 Y0 X1 Y1
   std::optional<std::pair<int, int>> sample_range;  ///< --samples FIRST LAST
