@@ -273,7 +273,11 @@ int run_cli(int argc, const char* const* argv) {
   if (colorspaces->parsed()) return run_colorspaces_command(ocio_config);
   if (convert->parsed()) return run_convert_command(convert_options);
   if (bench->parsed()) return run_bench_command(bench_options);
-  if (validate->parsed()) return run_validate_command(validate_options);
+  if (validate->parsed()) {
+    validate_options.accel_given = validate->count("--accel") > 0;
+    validate_options.against_given = validate->count("--against") > 0;
+    return run_validate_command(validate_options);
+  }
   std::fputs(app.help().c_str(), stdout);
   return kExitSuccess;
 }
