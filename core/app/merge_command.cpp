@@ -429,10 +429,11 @@ int run_merge_command(const MergeOptions& options) {
       merged_provenance(parts, record, film, build_ms, options.command_line);
   std::vector<std::string> files;
   for (const auto& file : plan.files) files.push_back(file.path.string());
+  const char* noun = parts.size() == 1 ? "part" : "parts";
   if (complete) {
     write_outputs(plan, film.resolve(), metadata, pipeline);
-    std::printf("merged %zu parts: %dx%d at %d spp, %.4g ms of rendering in all -> %s\n",
-                parts.size(), reference.width, reference.height, reference.spp, render_ms,
+    std::printf("merged %zu %s: %dx%d at %d spp, %.4g ms of rendering in all -> %s\n", parts.size(),
+                noun, reference.width, reference.height, reference.spp, render_ms,
                 join(files).c_str());
   } else {
     // A part again, with its exact sums, for a further merge.
@@ -441,10 +442,10 @@ int run_merge_command(const MergeOptions& options) {
     rest.files.erase(rest.files.begin());
     write_outputs(rest, film.resolve(), metadata, pipeline);
     std::printf(
-        "merged %zu parts into a part (%s of the %dx%d frame at %d spp): merge it with the rest "
+        "merged %zu %s into a part (%s of the %dx%d frame at %d spp): merge it with the rest "
         "of the frame -> %s\n",
-        parts.size(), describe_extent(coverage.window, coverage.samples).c_str(), reference.width,
-        reference.height, reference.spp, join(files).c_str());
+        parts.size(), noun, describe_extent(coverage.window, coverage.samples).c_str(),
+        reference.width, reference.height, reference.spp, join(files).c_str());
   }
   return kExitSuccess;
 }
