@@ -302,7 +302,9 @@ PartsCoverage check_part_coverage(const std::vector<PartExtent>& parts) {
   PRISM_CHECK(!parts.empty());
   PartsCoverage box{parts.front().window, parts.front().samples};
   for (const auto& p : parts) {
-    PRISM_CHECK(!p.window.empty() && p.samples.count() > 0);
+    PRISM_CHECK(!p.window.empty() && p.samples.count() > 0 && p.window.begin.x >= 0 &&
+                p.window.begin.y >= 0 && p.window.end.x <= kMaxFilmSide &&
+                p.window.end.y <= kMaxFilmSide);
     box.window.begin = glm::min(box.window.begin, p.window.begin);
     box.window.end = glm::max(box.window.end, p.window.end);
     box.samples.first = std::min(box.samples.first, p.samples.first);
@@ -323,8 +325,8 @@ PartsCoverage check_part_coverage(const std::vector<PartExtent>& parts) {
                                            a.file, describe_extent(both, samples)));
     }
   }
-  // Disjoint parts inside the box: they fill it exactly when their volumes add up to its volume.
-  // At most 2^25 pixels x 2^20 samples: no overflow.
+  // Disjoint parts inside the box fill it exactly when their volumes add up to its volume, which
+  // is below 2^28 pixels x 2^32 samples: no overflow.
   uint64_t volume = 0;
   for (const auto& p : parts) volume += uint64_t(p.window.pixel_count()) * p.samples.count();
   if (volume == uint64_t(box.window.pixel_count()) * box.samples.count()) return box;

@@ -42,12 +42,14 @@ struct PartsCoverage {
   SampleRange samples;
 };
 
-/// Checks that `parts` (at least one, each non-empty) cover every (pixel, sample) of their
-/// bounding box exactly once, and returns that box. Exact, in integers: any two parts are
-/// compared for an overlap (Error(kInput) naming the later file, the earlier one and the pixels
-/// and samples in both); disjoint parts leave no gap exactly when their volumes add up to the
-/// box's. A gap is Error(kInput) naming a box of pixels and samples in no part, found on the
-/// grid the parts' edges make. Cost: n^2 comparisons, plus a grid search only on a gap.
+/// Checks that `parts` (at least one, each non-empty, inside an image of at most kMaxFilmSide
+/// pixels a side) cover every (pixel, sample) of their bounding box exactly once, and returns
+/// that box. Exact, in integers: any two parts are compared for an overlap (Error(kInput) naming
+/// the later file, the earlier one and the pixels and samples in both); disjoint parts leave no
+/// gap exactly when their volumes add up to the box's. A gap is Error(kInput) naming a box of
+/// pixels and samples in no part, found on the grid the parts' edges make. Cost: n^2 box
+/// comparisons; on a gap, a search of the grid's cells (each against every part) up to the first
+/// empty one.
 PartsCoverage check_part_coverage(const std::vector<PartExtent>& parts);
 
 /// "x in [X0, X1), y in [Y0, Y1)" and ", samples [FIRST, LAST)": how merge names pixels and
