@@ -8,6 +8,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -140,6 +141,25 @@ TEST(AppResume, ResumedTwiceGivesTheUninterruptedBits) {
   const ImageFileContents resumed = read_image_file(out);
   EXPECT_EQ(resumed.attribute("prism:passes"), "64 of 64");
   EXPECT_TRUE(same_bits(resumed.image, read_exr_image(ref)));
+}
+
+TEST(AppResume, AdaptiveSamplingResumesToTheUninterruptedBits) {
+  // Passes of 3 against batches of 4: the stop falls inside a batch, and the resumed run must
+  // carry on each pixel's convergence test from the checkpoint's sums.
+  TestDirs dirs("resume_adaptive");
+  const fs::path ref = dirs.out / "ref.exr", out = dirs.out / "out.exr", ck = dirs.out / "ck.exr";
+  const std::vector<std::string> adaptive = plus(spheres(128), {"-a", "4", "0.05"});
+  run_ok(render_args(plus(adaptive, {"-f", ref.string()})));
+  run_ok(render_args(plus(adaptive, {"--pass-samples", "3", "-t", "1", "--time-limit", "0.05",
+                                     "--checkpoint", ck.string(), "-f", out.string()})));
+  ASSERT_EQ(read_image_file(out).attribute("prism:stoppedBy"), "time limit");
+  run_ok(resume_args(ck));
+  const ImageFileContents resumed = read_image_file(out);
+  EXPECT_EQ(resumed.attribute("prism:passes"), "43 of 43");
+  EXPECT_TRUE(same_bits(resumed.image, read_exr_image(ref)));
+  // Adaptive sampling did stop pixels early.
+  const std::vector<float> counts = channel_values(resumed.image, "sampleCount.Y");
+  EXPECT_LT(*std::min_element(counts.begin(), counts.end()), 128.0f);
 }
 
 // --- Signals ----------------------------------------------------------------------------------
