@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <cstring>
+#include <memory>
 
 #include "color/image_writers.h"
 #include "core/hash.h"
@@ -65,13 +66,16 @@ void write_state_file(const fs::path& path, const Image& image, const Film& film
        color_detail::Subimage{state, OIIO::TypeDesc::UINT32, film.pixels().data()}});
 }
 
-StateFileContents read_state_file(const fs::path& path) {
+namespace {
+
+/// The file opened on its state image, with the first image's attributes: what every state file
+/// has before its pixels. Throws Error(kInput) naming the file.
+std::unique_ptr<OIIO::ImageInput> open_state_file(const fs::path& path, ImageMetadata& attributes) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw bad_file(path, "not a file");
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw bad_file(path, "not a readable image: " + OIIO::geterror());
   if (std::string(in->format_name()) != "openexr") throw bad_file(path, "not an OpenEXR file");
-  ImageMetadata attributes;
   for (const auto& p : in->spec().extra_attribs) {
     attributes.emplace_back(p.name().string(), p.get_string());
   }
@@ -79,10 +83,24 @@ StateFileContents read_state_file(const fs::path& path) {
     throw bad_file(path, "has no render state (a checkpoint or part holds a second image, '" +
                              std::string(kStateImageName) + "')");
   }
-  const OIIO::ImageSpec spec = in->spec();
-  if (spec.get_string_attribute("name") != kStateImageName) {
+  if (in->spec().get_string_attribute("name") != kStateImageName) {
     throw bad_file(path, "its second image is not '" + std::string(kStateImageName) + "'");
   }
+  return in;
+}
+
+}  // namespace
+
+ImageMetadata read_state_file_attributes(const fs::path& path) {
+  ImageMetadata attributes;
+  open_state_file(path, attributes);
+  return attributes;
+}
+
+StateFileContents read_state_file(const fs::path& path) {
+  ImageMetadata attributes;
+  const std::unique_ptr<OIIO::ImageInput> in = open_state_file(path, attributes);
+  const OIIO::ImageSpec spec = in->spec();
   if (spec.get_int_attribute("prism:stateVersion") != kStateVersion) {
     throw bad_file(path, fmt::format("state version {} is not {}",
                                      spec.get_int_attribute("prism:stateVersion"), kStateVersion));

@@ -35,4 +35,10 @@ struct StateFileContents {
 /// checksum of the words. Throws Error(kInput) naming the file and what is wrong.
 StateFileContents read_state_file(const std::filesystem::path& path);
 
+/// The attributes of a state file's first image (StateFileContents::attributes) without reading
+/// any pixel: for a quick look at many large files before reading them. Checks what
+/// read_state_file() checks before the state's pixels (an OpenEXR file whose second image is
+/// "prism.state"); throws Error(kInput) naming the file.
+ImageMetadata read_state_file_attributes(const std::filesystem::path& path);
+
 }  // namespace prism

@@ -17,40 +17,81 @@ WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), tmin(ray.tmin
   shear_y = -ray.direction[ky] * shear_z;
 }
 
-std::optional<PrimitiveHit> intersect_triangle(const WatertightRay& ray, const Vec3& p0,
-                                               const Vec3& p1, const Vec3& p2) {
+namespace {
+
+/// The vertices relative to the ray origin in the ray's sheared frame: (x, y) in the plane
+/// normal to the direction, z along the permuted axis. The same operations in the same order
+/// everywhere (the SIMD kernels repeat them), so every caller gets the same bits.
+struct ShearedTriangle {
+  float ax, ay, az, bx, by, bz, cx, cy, cz;
+};
+
+ShearedTriangle shear(const WatertightRay& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   const Vec3 a = p0 - ray.origin;
   const Vec3 b = p1 - ray.origin;
   const Vec3 c = p2 - ray.origin;
-  const float az = a[ray.kz], bz = b[ray.kz], cz = c[ray.kz];
-  const float ax = a[ray.kx] + ray.shear_x * az;
-  const float ay = a[ray.ky] + ray.shear_y * az;
-  const float bx = b[ray.kx] + ray.shear_x * bz;
-  const float by = b[ray.ky] + ray.shear_y * bz;
-  const float cx = c[ray.kx] + ray.shear_x * cz;
-  const float cy = c[ray.ky] + ray.shear_y * cz;
+  ShearedTriangle s;
+  s.az = a[ray.kz];
+  s.bz = b[ray.kz];
+  s.cz = c[ray.kz];
+  s.ax = a[ray.kx] + ray.shear_x * s.az;
+  s.ay = a[ray.ky] + ray.shear_y * s.az;
+  s.bx = b[ray.kx] + ray.shear_x * s.bz;
+  s.by = b[ray.ky] + ray.shear_y * s.bz;
+  s.cx = c[ray.kx] + ray.shear_x * s.cz;
+  s.cy = c[ray.ky] + ray.shear_y * s.cz;
+  return s;
+}
 
-  float e0 = bx * cy - by * cx;
-  float e1 = cx * ay - cy * ax;
-  float e2 = ax * by - ay * bx;
+/// Whether the triangle's vertices are collinear or coincide, exactly: its cross product in
+/// double (where the differences of floats are exact) is zero. Such a triangle has no area and
+/// is never hit, whatever rounding the sheared frame adds.
+bool is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  const DVec3 e1 = DVec3(p1) - DVec3(p0);
+  const DVec3 e2 = DVec3(p2) - DVec3(p0);
+  return glm::cross(e1, e2) == DVec3(0.0);
+}
+
+}  // namespace
+
+std::optional<PrimitiveHit> triangle_hit_parameters(const WatertightRay& ray, const Vec3& p0,
+                                                    const Vec3& p1, const Vec3& p2) {
+  if (is_degenerate(p0, p1, p2)) return std::nullopt;
+  const ShearedTriangle s = shear(ray, p0, p1, p2);
+  // Float products of the edge functions cancel badly on long thin triangles seen along their
+  // length, and t interpolates vertex depths that differ by the whole length with them: a float
+  // t can be off by 1e-4 relative and put the farther of two nearby slivers first. In double the
+  // products of floats are exact, so each edge function is rounded once.
+  const double e0 = double(s.bx) * double(s.cy) - double(s.by) * double(s.cx);
+  const double e1 = double(s.cx) * double(s.ay) - double(s.cy) * double(s.ax);
+  const double e2 = double(s.ax) * double(s.by) - double(s.ay) * double(s.bx);
+  const double det = e0 + e1 + e2;
+  if (det == 0.0) return std::nullopt;
+  const double t_scaled =
+      (e0 * double(s.az) + e1 * double(s.bz) + e2 * double(s.cz)) * double(ray.shear_z);
+  const float t = static_cast<float>(t_scaled / det);
+  if (!(t >= ray.tmin && t <= ray.tmax)) return std::nullopt;
+  return PrimitiveHit{t, static_cast<float>(e1 / det), static_cast<float>(e2 / det)};
+}
+
+std::optional<PrimitiveHit> intersect_triangle(const WatertightRay& ray, const Vec3& p0,
+                                               const Vec3& p1, const Vec3& p2) {
+  const ShearedTriangle s = shear(ray, p0, p1, p2);
+  float e0 = s.bx * s.cy - s.by * s.cx;
+  float e1 = s.cx * s.ay - s.cy * s.ax;
+  float e2 = s.ax * s.by - s.ay * s.bx;
   // Exactly zero edge functions are recomputed in double so that rays through edges and vertices
   // are classified consistently for neighbouring triangles.
   if (e0 == 0.0f || e1 == 0.0f || e2 == 0.0f) {
-    e0 = static_cast<float>(double(bx) * double(cy) - double(by) * double(cx));
-    e1 = static_cast<float>(double(cx) * double(ay) - double(cy) * double(ax));
-    e2 = static_cast<float>(double(ax) * double(by) - double(ay) * double(bx));
+    e0 = static_cast<float>(double(s.bx) * double(s.cy) - double(s.by) * double(s.cx));
+    e1 = static_cast<float>(double(s.cx) * double(s.ay) - double(s.cy) * double(s.ax));
+    e2 = static_cast<float>(double(s.ax) * double(s.by) - double(s.ay) * double(s.bx));
   }
   if ((e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f)) {
     return std::nullopt;
   }
-  const float det = e0 + e1 + e2;
-  if (det == 0.0f) return std::nullopt;
-
-  const float t_scaled = (e0 * az + e1 * bz + e2 * cz) * ray.shear_z;
-  const float inv_det = 1.0f / det;
-  const float t = t_scaled * inv_det;
-  if (!(t >= ray.tmin && t <= ray.tmax)) return std::nullopt;
-  return PrimitiveHit{t, e1 * inv_det, e2 * inv_det};
+  if (e0 + e1 + e2 == 0.0f) return std::nullopt;
+  return triangle_hit_parameters(ray, p0, p1, p2);
 }
 
 std::optional<PrimitiveHit> intersect_sphere(const Ray& ray, const Vec3& center, float radius) {

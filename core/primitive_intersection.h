@@ -28,10 +28,20 @@ struct WatertightRay {
 };
 
 /// Watertight ray/triangle test: a ray through a shared edge or vertex hits at least one of the
-/// triangles sharing it. Both faces count. Returns the hit with t in [tmin, tmax], u, v in
-/// Embree's convention (p = (1-u-v) p0 + u p1 + v p2), or nothing.
+/// triangles sharing it. Both faces count; a triangle whose vertices are collinear or coincide
+/// is never hit. Returns the hit with t in [tmin, tmax], u, v in Embree's convention
+/// (p = (1-u-v) p0 + u p1 + v p2), or nothing. The hit decision uses the float edge functions
+/// (exact zeros re-decided in double); t, u, v come from triangle_hit_parameters().
 std::optional<PrimitiveHit> intersect_triangle(const WatertightRay& ray, const Vec3& p0,
                                                const Vec3& p1, const Vec3& p2);
+
+/// The second half of intersect_triangle(), for callers that made the hit decision themselves
+/// with the same float operations (the SIMD kernels): t, u, v from the edge functions evaluated
+/// in double precision on the float sheared vertices, so that t is accurate even on long slivers
+/// seen along their length; nothing when the triangle is degenerate, the double determinant is
+/// zero or t is outside [tmin, tmax].
+std::optional<PrimitiveHit> triangle_hit_parameters(const WatertightRay& ray, const Vec3& p0,
+                                                    const Vec3& p1, const Vec3& p2);
 
 /// Ray/sphere test: the nearest root of |o + t d - c| = r with t in [tmin, tmax] (the far root
 /// when the near one is outside the interval). u = phi / 2pi, v = theta / pi of the hit point

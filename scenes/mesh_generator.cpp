@@ -179,6 +179,48 @@ TriangleMesh make_slivers(size_t n, const CounterRng& rng) {
   return mesh;
 }
 
+/// Pairs of long thin triangles folded along their shared long edge, as thin panels of an
+/// architectural mesh are: the edge is about 1.4 long and runs anywhere in the box; each
+/// triangle's third corner sits near one end, 0.0003 to 0.003 off the edge, the two at an angle
+/// of 0.05 to 30 degrees about it. Seen along its length such a pair is two surfaces a few
+/// 1e-5 apart, where only an accurate t orders them right.
+TriangleMesh make_folded_slivers(size_t n, const CounterRng& rng) {
+  TriangleMesh mesh;
+  reserve_mesh(mesh, 3 * n, n);
+  for (size_t i = 0; i < n; i += 2) {
+    const size_t pair = i / 2;
+    const Vec3 center(rng.uniform(pair, 0, -0.3f, 0.3f), rng.uniform(pair, 1, -0.3f, 0.3f),
+                      rng.uniform(pair, 2, -0.3f, 0.3f));
+    const float z = rng.uniform(pair, 3, -1.0f, 1.0f), phi = rng.uniform(pair, 4, 0.0f, 2 * kPi);
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const Vec3 along(r * std::cos(phi), r * std::sin(phi), z);
+    const Vec3 a = center - 0.68f * along, b = center + 0.68f * along;
+    // Two unit directions across the edge, `fold` radians apart about it.
+    Vec3 p = glm::cross(along, Vec3(0.0f, 0.0f, 1.0f));
+    if (glm::length(p) < 0.1f) p = glm::cross(along, Vec3(1.0f, 0.0f, 0.0f));
+    p = glm::normalize(p);
+    const Vec3 q = glm::normalize(glm::cross(along, p));
+    const float spin = rng.uniform(pair, 5, 0.0f, 2 * kPi);
+    const Vec3 p1 = std::cos(spin) * p + std::sin(spin) * q;
+    const Vec3 q1 = glm::normalize(glm::cross(along, p1));
+    const float fold =
+        glm::radians(std::exp(rng.uniform(pair, 6, std::log(0.05f), std::log(30.0f))));
+    const Vec3 p2 = std::cos(fold) * p1 + std::sin(fold) * q1;
+    const float w1 = rng.uniform(pair, 7, 0.0003f, 0.003f);
+    const float w2 = rng.uniform(pair, 8, 0.0003f, 0.003f);
+    const size_t base = mesh.positions.size();
+    mesh.positions.push_back(a);
+    mesh.positions.push_back(b);
+    mesh.positions.push_back(b + w1 * p1);
+    mesh.triangles.push_back(tri(base, base + 1, base + 2));
+    if (i + 1 < n) {
+      mesh.positions.push_back(a + w2 * p2);
+      mesh.triangles.push_back(tri(base + 1, base, base + 3));
+    }
+  }
+  return mesh;
+}
+
 /// cells x cells squares over [-1,1]^2 at z = 0, two triangles each, facing +z; every interior
 /// vertex is shared by six triangles.
 TriangleMesh make_grid(size_t cells) {
@@ -211,8 +253,10 @@ GeneratedMeshKind parse_generated_mesh_kind(const std::string& name) {
   if (name == "soup") return GeneratedMeshKind::kSoup;
   if (name == "slivers") return GeneratedMeshKind::kSlivers;
   if (name == "grid") return GeneratedMeshKind::kGrid;
-  throw Error(ErrorKind::kUsage, "unknown generated mesh kind '" + name +
-                                     "'; available: sphere, noisy_sphere, soup, slivers, grid");
+  if (name == "folded_slivers") return GeneratedMeshKind::kFoldedSlivers;
+  throw Error(ErrorKind::kUsage,
+              "unknown generated mesh kind '" + name +
+                  "'; available: sphere, noisy_sphere, soup, slivers, grid, folded_slivers");
 }
 
 std::string to_string(GeneratedMeshKind kind) {
@@ -227,6 +271,8 @@ std::string to_string(GeneratedMeshKind kind) {
       return "slivers";
     case GeneratedMeshKind::kGrid:
       return "grid";
+    case GeneratedMeshKind::kFoldedSlivers:
+      return "folded_slivers";
   }
   return "unknown";
 }
@@ -256,6 +302,9 @@ TriangleMesh generate_mesh(GeneratedMeshKind kind, size_t triangle_count, uint64
       break;
     case GeneratedMeshKind::kSlivers:
       mesh = make_slivers(triangle_count, rng);
+      break;
+    case GeneratedMeshKind::kFoldedSlivers:
+      mesh = make_folded_slivers(triangle_count, rng);
       break;
     case GeneratedMeshKind::kGrid: {
       const double cells = std::sqrt(static_cast<double>(triangle_count) / 2.0);

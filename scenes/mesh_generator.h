@@ -11,15 +11,18 @@ namespace prism {
 /// the unit-ish box around the origin unless stated, and scale to 10M triangles (memory is
 /// reserved up front; generation is linear time).
 enum class GeneratedMeshKind {
-  kSphere,       ///< tessellated UV sphere of radius 1, shared vertices
-  kNoisySphere,  ///< the sphere with each vertex moved radially by deterministic noise
-  kSoup,         ///< independent random triangles in [-1,1]^3 (no shared vertices)
-  kSlivers,      ///< long thin triangles (aspect ~1000:1) crossing the box
-  kGrid,         ///< a flat n x n grid in the z=0 plane over [-1,1]^2, two triangles per cell
-                 ///< sharing edges and vertices
+  kSphere,         ///< tessellated UV sphere of radius 1, shared vertices
+  kNoisySphere,    ///< the sphere with each vertex moved radially by deterministic noise
+  kSoup,           ///< independent random triangles in [-1,1]^3 (no shared vertices)
+  kSlivers,        ///< long thin triangles (aspect ~1000:1) crossing the box
+  kGrid,           ///< a flat n x n grid in the z=0 plane over [-1,1]^2, two triangles per cell
+                   ///< sharing edges and vertices
+  kFoldedSlivers,  ///< pairs of thin triangles (1.4 x 0.0003..0.003) folded along a shared long
+                   ///< edge by 0.05..30 degrees, as thin panels of architectural meshes
 };
 
-/// Parses "sphere", "noisy_sphere", "soup", "slivers", "grid"; throws Error(kUsage) listing them.
+/// Parses "sphere", "noisy_sphere", "soup", "slivers", "grid", "folded_slivers"; throws
+/// Error(kUsage) listing them.
 GeneratedMeshKind parse_generated_mesh_kind(const std::string& name);
 std::string to_string(GeneratedMeshKind kind);
 

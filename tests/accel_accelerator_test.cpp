@@ -116,6 +116,24 @@ TEST_P(AccelAccelerator, SpheresFromOutsideAndInside) {
   EXPECT_FALSE(query(ray({0, 1.0001f, 0}, {0, 0, 1})));  // passes just outside the silhouette
 }
 
+TEST_P(AccelAccelerator, FoldedSliversAreOrderedAsInDoublePrecision) {
+  // Two slivers of an architectural mesh (edges 1.36 long, 0.0006 wide) folded along their
+  // shared edge, and a ray that meets both near the edge: in double precision B is hit at
+  // t = 0.1861639, A at 0.1862026. A float t off by 5e-5 used to return A.
+  SceneGeometry g;
+  g.meshes.push_back(mesh_of({{0x1.3c411ap-4f, 0x1.570ef2p-1f, 0x1.a1d50cp-4f},
+                              {0x1.3c411ap-4f, -0x1.6046dp-1f, 0x1.a1d4dp-4f},
+                              {0x1.39d676p-4f, -0x1.6046dp-1f, 0x1.a14b8cp-4f},
+                              {0x1.3bb7d6p-4f, 0x1.570ef2p-1f, 0x1.a43ca8p-4f}},
+                             {{0, 1, 2}, {1, 0, 3}}));
+  build(std::move(g));
+  const auto hit = query(ray({0x1.7b50ep-3f, -0x1.0ab0b8p-2f, 0x1.868a6ep-3f},
+                             {-0x1.290af4p-1f, 0x1.524934p-1f, -0x1.e7bd1p-2f}));
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->prim_id, 1u) << "t = " << hit->t;
+  EXPECT_NEAR(hit->t, 0.1861639, 2e-7);
+}
+
 TEST_P(AccelAccelerator, GeomIdsFollowMeshesThenSpheres) {
   SceneGeometry g;
   g.meshes.push_back(mesh_of({{-1, -1, 8}, {1, -1, 8}, {0, 1, 8}}, {{0, 1, 2}}));

@@ -34,5 +34,21 @@ TEST(AppValidate, PassesWritesItsFilesAndReplays) {
   EXPECT_EQ(exact.out.find("tie=1"), std::string::npos) << exact.out;
 }
 
+TEST(AppValidate, ReplayTakesTheBackendsTheCommandLineNames) {
+  const test::TestDirs dirs("validate_replay");
+  const std::string failures = (dirs.out / "failures.txt").string();
+  const std::string heatmap = (dirs.out / "heat.png").string();
+  const test::ProgramResult r = test::run_prism(
+      {"validate", "gen:grid:200", "--rays", "300", "--failures", failures, "--heatmap", heatmap});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const test::ProgramResult from_file = test::run_prism({"validate", "--replay", failures});
+  ASSERT_EQ(from_file.exit_code, 0) << from_file.out << from_file.err;
+  EXPECT_NE(from_file.out.find("bvh vs embree"), std::string::npos) << from_file.out;
+  const test::ProgramResult flags =
+      test::run_prism({"validate", "--replay", failures, "--accel", "brute", "--against", "bvh"});
+  ASSERT_EQ(flags.exit_code, 0) << flags.out << flags.err;
+  EXPECT_NE(flags.out.find("brute vs bvh"), std::string::npos) << flags.out;
+}
+
 }  // namespace
 }  // namespace prism

@@ -13,9 +13,10 @@
 namespace prism {
 namespace {
 
-const GeneratedMeshKind kAllKinds[] = {GeneratedMeshKind::kSphere, GeneratedMeshKind::kNoisySphere,
-                                       GeneratedMeshKind::kSoup, GeneratedMeshKind::kSlivers,
-                                       GeneratedMeshKind::kGrid};
+const GeneratedMeshKind kAllKinds[] = {
+    GeneratedMeshKind::kSphere, GeneratedMeshKind::kNoisySphere,
+    GeneratedMeshKind::kSoup,   GeneratedMeshKind::kSlivers,
+    GeneratedMeshKind::kGrid,   GeneratedMeshKind::kFoldedSlivers};
 
 bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; }
 
@@ -51,6 +52,26 @@ TEST(ScenesMeshGenerator, ExactCountsForSoupAndSlivers) {
     EXPECT_EQ(soup.positions.size(), 3 * n);  // no shared vertices
     const TriangleMesh slivers = generate_mesh(GeneratedMeshKind::kSlivers, n, 3);
     EXPECT_EQ(slivers.triangle_count(), n);
+    EXPECT_EQ(generate_mesh(GeneratedMeshKind::kFoldedSlivers, n, 3).triangle_count(), n);
+  }
+}
+
+TEST(ScenesMeshGenerator, FoldedSliversArePairsSharingALongEdge) {
+  const TriangleMesh mesh = generate_mesh(GeneratedMeshKind::kFoldedSlivers, 2000, 5);
+  ASSERT_EQ(mesh.triangle_count(), 2000u);
+  for (size_t i = 0; i + 1 < mesh.triangles.size(); i += 2) {
+    const glm::uvec3 a = mesh.triangles[i], b = mesh.triangles[i + 1];
+    // The second triangle runs the shared edge the other way (a consistent fold).
+    ASSERT_EQ(a.x, b.y);
+    ASSERT_EQ(a.y, b.x);
+    const Vec3 edge = mesh.positions[a.y] - mesh.positions[a.x];
+    EXPECT_NEAR(glm::length(edge), 1.36f, 1e-4f);
+    for (const glm::uvec3 t : {a, b}) {
+      const Vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y], p2 = mesh.positions[t.z];
+      const float width = glm::length(glm::cross(p1 - p0, p2 - p0)) / glm::length(p1 - p0);
+      EXPECT_GE(width, 0.0003f * 0.999f);
+      EXPECT_LE(width, 0.003f * 1.001f);
+    }
   }
 }
 

@@ -17,12 +17,35 @@ void fill_triangle_block(const SceneGeometry& geometry, const PrimRef* refs, int
   }
 }
 
+namespace {
+
+struct LaneVertices {
+  Vec3 v[3];
+};
+
+LaneVertices lane_vertices(const TriangleBlock& block, int lane) {
+  LaneVertices out;
+  for (int k = 0; k < 3; ++k) {
+    out.v[k] = Vec3(block.p[k][0][lane], block.p[k][1][lane], block.p[k][2][lane]);
+  }
+  return out;
+}
+
+}  // namespace
+
 bool intersect_block_lane(const WatertightRay& ray, const TriangleBlock& block, int lane,
                           PrimitiveHit& hit) {
-  Vec3 v[3];
-  for (int k = 0; k < 3; ++k)
-    v[k] = Vec3(block.p[k][0][lane], block.p[k][1][lane], block.p[k][2][lane]);
-  const std::optional<PrimitiveHit> h = intersect_triangle(ray, v[0], v[1], v[2]);
+  const LaneVertices l = lane_vertices(block, lane);
+  const std::optional<PrimitiveHit> h = intersect_triangle(ray, l.v[0], l.v[1], l.v[2]);
+  if (!h) return false;
+  hit = *h;
+  return true;
+}
+
+bool block_lane_hit_parameters(const WatertightRay& ray, const TriangleBlock& block, int lane,
+                               PrimitiveHit& hit) {
+  const LaneVertices l = lane_vertices(block, lane);
+  const std::optional<PrimitiveHit> h = triangle_hit_parameters(ray, l.v[0], l.v[1], l.v[2]);
   if (!h) return false;
   hit = *h;
   return true;

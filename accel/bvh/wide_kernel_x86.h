@@ -262,9 +262,10 @@ struct Lanes<__m256> {
   }
 };
 
-/// Watertight triangle tests on the lanes of one or two blocks at once, in
-/// intersect_triangle()'s order of operations. Lanes with an exactly zero edge function go
-/// through the scalar test (its double-precision path). Replaces `hit` by a hit in
+/// Watertight triangle tests on the lanes of one or two blocks at once: the hit decision in
+/// intersect_triangle()'s order of operations, then t, u, v of the lanes hit from the scalar
+/// triangle_hit_parameters(). Lanes with an exactly zero edge function go through the scalar
+/// test (its double-precision path). Replaces `hit` by a hit in
 /// [tmin, tmax] that comes before it and returns whether it did (any_hit: whether any lane hits).
 template <typename V>
 PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
@@ -298,53 +299,37 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   // Most blocks a ray reaches miss all their triangles: stop before t and the division.
   if (vmask(outside) == kAll && special_mask == 0) return false;
   const V det = vadd(vadd(e0, e1), e2);
-  const V t_scaled = vmul(vadd(vadd(vmul(e0, az), vmul(e1, bz)), vmul(e2, cz)), L::narrow(ray.sz));
-  const V inv_det = vdiv(L::set1(1.0f), det);
-  const V t = vmul(t_scaled, inv_det);
-  V ok = vand(vcmp<_CMP_NEQ_UQ>(det, zero),
-              vand(vcmp<_CMP_GE_OQ>(t, L::narrow(ray.tmin)), vcmp<_CMP_LE_OQ>(t, L::set1(tmax))));
-  ok = vandnot(vor(L::sign_mask(outside), special), ok);
+  const V ok = vandnot(vor(L::sign_mask(outside), special), vcmp<_CMP_NEQ_UQ>(det, zero));
   const int mask = vmask(ok);
+  if (mask == 0 && special_mask == 0) return false;
   auto geom = [&](int lane) { return blocks[lane >> 2]->geom_id[lane & 3]; };
   auto prim = [&](int lane) { return blocks[lane >> 2]->prim_id[lane & 3]; };
+  // The lanes the ray passes through take t, u, v from the scalar code in double precision
+  // (triangle_hit_parameters()), as intersect_triangle() does; lanes with a zero edge function
+  // take the whole scalar test. Either way the bits are brute force's.
+  WatertightRay w(ray.ray);
   bool found = false;
-  if (mask != 0) {
+  for (unsigned z = static_cast<unsigned>(mask); z != 0; z &= z - 1) {
+    const int lane = lowest_lane(z);
+    w.tmax = tmax;
+    PrimitiveHit h;
+    if (!block_lane_hit_parameters(w, *blocks[lane >> 2], lane & 3, h)) continue;
     if (any_hit) return true;
-    const V tm = vblend(L::set1(kInfinity), t, ok);
-    uint32_t nearest =
-        static_cast<uint32_t>(vmask(vcmp<_CMP_EQ_OQ>(tm, L::horizontal_min(tm))) & mask);
-    int lane = lowest_lane(nearest);
-    // Several lanes at exactly the same t: the tie order decides, as in brute force.
-    for (nearest &= nearest - 1; nearest != 0; nearest &= nearest - 1) {
-      const int other = lowest_lane(nearest);
-      if (geom(other) < geom(lane) || (geom(other) == geom(lane) && prim(other) < prim(lane))) {
-        lane = other;
-      }
-    }
-    alignas(32) float ts[L::kCount];
-    vstore(ts, t);
-    if (comes_before_hit(ts[lane], geom(lane), prim(lane), hit)) {
-      alignas(32) float us[L::kCount], vs[L::kCount];
-      vstore(us, vmul(e1, inv_det));
-      vstore(vs, vmul(e2, inv_det));
-      tmax = ts[lane];
-      hit = {ts[lane], us[lane], vs[lane], geom(lane), prim(lane)};
-      found = true;
-    }
+    if (!comes_before_hit(h.t, geom(lane), prim(lane), hit)) continue;
+    tmax = h.t;
+    hit = {h.t, h.u, h.v, geom(lane), prim(lane)};
+    found = true;
   }
-  if (special_mask != 0) {
-    WatertightRay w(ray.ray);
-    for (unsigned z = static_cast<unsigned>(special_mask); z != 0; z &= z - 1) {
-      const int lane = lowest_lane(z);
-      w.tmax = tmax;
-      PrimitiveHit h;
-      if (!intersect_block_lane(w, *blocks[lane >> 2], lane & 3, h)) continue;
-      if (any_hit) return true;
-      if (!comes_before_hit(h.t, geom(lane), prim(lane), hit)) continue;
-      tmax = h.t;
-      hit = {h.t, h.u, h.v, geom(lane), prim(lane)};
-      found = true;
-    }
+  for (unsigned z = static_cast<unsigned>(special_mask); z != 0; z &= z - 1) {
+    const int lane = lowest_lane(z);
+    w.tmax = tmax;
+    PrimitiveHit h;
+    if (!intersect_block_lane(w, *blocks[lane >> 2], lane & 3, h)) continue;
+    if (any_hit) return true;
+    if (!comes_before_hit(h.t, geom(lane), prim(lane), hit)) continue;
+    tmax = h.t;
+    hit = {h.t, h.u, h.v, geom(lane), prim(lane)};
+    found = true;
   }
   return found;
 }

@@ -14,6 +14,7 @@
 #include "accel/accelerator.h"
 #include "core/app/bench_command.h"
 #include "core/app/commands.h"
+#include "core/app/merge_command.h"
 #include "core/app/mpi_world.h"
 #include "core/app/provenance.h"
 #include "core/app/rank_agreement.h"
@@ -25,8 +26,8 @@
 namespace prism {
 namespace {
 
-constexpr std::array<const char*, 7> kCommands = {"render",  "info",  "list",    "colorspaces",
-                                                  "convert", "bench", "validate"};
+constexpr std::array<const char*, 8> kCommands = {"render",  "info",  "list",     "colorspaces",
+                                                  "convert", "bench", "validate", "merge"};
 
 /// `prism render --help`'s footer; the defaults come from the constants the code uses.
 std::string render_footer() {
@@ -200,6 +201,24 @@ void add_validate_options(CLI::App& validate, ValidateOptions& o) {
   validate.add_option("-t,--threads", o.threads, "worker threads; 0 = all (default)");
 }
 
+void add_merge_options(CLI::App& merge, MergeOptions& o) {
+  merge
+      .add_option("parts", o.parts,
+                  "part files: EXRs of `prism render --crop/--samples`, or of an earlier merge")
+      ->required();
+  merge
+      .add_option("-f,--output", o.output,
+                  "the merged image (.exr, .png, .jpg, .tif), or a larger part (.exr) when the "
+                  "parts are not the whole frame")
+      ->required();
+  merge.add_flag("--png", o.png, "also write a PNG beside the EXR");
+  merge.add_flag("-q,--quiet", o.quiet, "no progress output");
+  merge.footer(
+      "The parts must be of one render (scene, options, resolution, spp, seed) and cover every "
+      "pixel and sample of a box exactly once; the result is bit for bit the single render's. "
+      "See docs/PRODUCTION.md.");
+}
+
 /// One line, whatever CLI11 put in its message.
 std::string usage_error_line(const std::string& message, const std::string& help_hint) {
   std::string line = message;
@@ -255,6 +274,11 @@ int run_cli(int argc, const char* const* argv) {
       "validate", "compare two backends ray by ray, judged by a double-precision oracle");
   add_validate_options(*validate, validate_options);
 
+  MergeOptions merge_options;
+  CLI::App* merge = app.add_subcommand(
+      "merge", "add up parts of a frame (render --crop, --samples) into the image, bit for bit");
+  add_merge_options(*merge, merge_options);
+
   std::vector<std::string> args = arguments_with_default_command(argc, argv);
   if (args.empty()) {
     agree_on_command(kExitSuccess, "", "help");
@@ -292,7 +316,15 @@ int run_cli(int argc, const char* const* argv) {
   if (colorspaces->parsed()) return run_colorspaces_command(ocio_config);
   if (convert->parsed()) return run_convert_command(convert_options);
   if (bench->parsed()) return run_bench_command(bench_options);
-  if (validate->parsed()) return run_validate_command(validate_options);
+  if (validate->parsed()) {
+    validate_options.accel_given = validate->count("--accel") > 0;
+    validate_options.against_given = validate->count("--against") > 0;
+    return run_validate_command(validate_options);
+  }
+  if (merge->parsed()) {
+    merge_options.command_line = quote_command_line(argc, argv);
+    return run_merge_command(merge_options);
+  }
   std::fputs(app.help().c_str(), stdout);
   return kExitSuccess;
 }

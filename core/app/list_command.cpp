@@ -44,6 +44,7 @@ int run_list_command() {
       {GeneratedMeshKind::kSoup, "independent random triangles in [-1,1]^3"},
       {GeneratedMeshKind::kSlivers, "long thin triangles (aspect ~1000:1)"},
       {GeneratedMeshKind::kGrid, "flat grid in the z=0 plane sharing edges and vertices"},
+      {GeneratedMeshKind::kFoldedSlivers, "pairs of thin triangles folded along a long edge"},
   };
   fmt::print("generated meshes:\n");
   for (const auto& [kind, description] : kinds) {

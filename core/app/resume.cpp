@@ -43,7 +43,10 @@ RenderOptions resumed_options(const RenderOptions& given, const RenderStateRecor
   options.threads = given.threads;
   options.quiet = given.quiet;
   options.time_limit = given.time_limit;
-  options.checkpoint_interval = given.checkpoint_interval;
+  // The interval and path are kept unless given again; threads and quiet are this run's.
+  if (given.checkpoint_interval != RenderOptions{}.checkpoint_interval) {
+    options.checkpoint_interval = given.checkpoint_interval;
+  }
   if (!given.checkpoint.empty()) {
     options.checkpoint = given.checkpoint;
   } else if (options.checkpoint.empty()) {

@@ -206,8 +206,9 @@ int run_validate_command(const ValidateOptions& given) {
   if (!options.replay.empty()) {
     replay = read_replay(options.replay);
     if (options.scene.empty()) options.scene = replay->scene;
-    if (!replay->accel.empty()) options.accel = replay->accel;
-    if (!replay->against.empty()) options.against = replay->against;
+    // The file's backends unless the command line names others.
+    if (!replay->accel.empty() && !options.accel_given) options.accel = replay->accel;
+    if (!replay->against.empty() && !options.against_given) options.against = replay->against;
     if (options.set.empty()) options.set = replay->set;
   }
   if (options.scene.empty()) throw Error(ErrorKind::kUsage, "SCENE is required");

@@ -14,8 +14,11 @@ struct ValidateOptions {
   size_t rays = 100000;            ///< rays per set (P, S, D1, D2, R and feature rays F)
   std::string accel = "bvh";       ///< --accel
   std::string against = "embree";  ///< --against
-  std::vector<std::string> set;    ///< --set key=value for both backends
-  std::string replay;              ///< re-run the rays of a failures file instead
+  /// Whether --accel / --against were given: with --replay they win over the file's backends.
+  bool accel_given = false;
+  bool against_given = false;
+  std::vector<std::string> set;                    ///< --set key=value for both backends
+  std::string replay;                              ///< re-run the rays of a failures file instead
   std::string failures = "validate_failures.txt";  ///< where non-matching rays are written
   std::string heatmap = "validate_heatmap.png";    ///< where they fall on the image
   int threads = 0;
