@@ -1,5 +1,17 @@
 #pragma once
 
+// A render split across the ranks of an MPI run (`mpirun -np N prism render ...`). The unit of
+// work is one tile of the schedule with every sample of its range still to take (tile-major:
+// adaptive sampling state stays with one rank, and each pixel's state crosses the network
+// once). Rank 0 coordinates and renders: its main thread hands tiles out on request, in
+// schedule order, to its own TileLanes and to the workers, and copies every tile that comes
+// back into the film whole; a worker keeps one request in flight while it renders, so that it
+// never waits for work. A tile that already has samples (a resumed render) travels with its
+// pixels' states. The film only ever holds whole tiles (finished, or as they were when handed
+// out), so a checkpoint can be written from it at any time without stopping the workers, and
+// integer sums make the result the single-process film bit for bit. docs/PRODUCTION.md ("MPI")
+// describes it for users.
+
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -13,16 +25,7 @@
 
 namespace prism {
 
-/// A render split across the ranks of an MPI run (`mpirun -np N prism render ...`). The unit of
-/// work is one tile of the schedule with every sample of its range still to take (tile-major:
-/// adaptive sampling state stays with one rank, and each pixel's state crosses the network
-/// once). Rank 0 coordinates and renders: its main thread hands tiles out on request, in
-/// schedule order, to its own TileLanes and to the workers, and copies every tile that comes
-/// back into the film whole; a worker keeps one request in flight while it renders, so that it
-/// never waits for work. A tile that already has samples (a resumed render) travels with its
-/// pixels' states. The film only ever holds whole tiles (finished, or as they were when handed
-/// out), so a checkpoint can be written from it at any time without stopping the workers, and
-/// integer sums make the result the single-process film bit for bit.
+/// How rank 0 runs a distributed render.
 struct DistributedOptions {
   int lanes = 1;  ///< rendering threads on rank 0
   /// Rank 0's stop signal: no tile is handed out once it is non-zero; the workers are told to
