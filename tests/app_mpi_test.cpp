@@ -326,10 +326,13 @@ TEST(AppMpi, ARankThatDiesLeavesNoOutputFile) {
   const ProgramResult result = launch.wait();
   EXPECT_NE(result.exit_code, 0);
   EXPECT_FALSE(fs::exists(out));
-  // Nothing half-written either: only the last complete checkpoint and the launch logs.
+  // No image at all, complete or partial: only the checkpoints written before (and, when rank
+  // 0 was killed while writing one, its temporary file, removed by the next run).
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
-    EXPECT_TRUE(name == "ck.exr" || name.rfind("launch.", 0) == 0) << name;
+    EXPECT_TRUE(name == "ck.exr" || name.rfind(".ck.exr.prism-tmp", 0) == 0 ||
+                name.rfind("launch.", 0) == 0)
+        << name;
   }
   fs::remove_all(dir);
 }

@@ -65,7 +65,8 @@ class Coordinator {
       }
       answer_requests();
       feed_lanes();
-      if (options_.checkpoint && !finished() &&
+      // Not while stopping: the checkpoint of the stop is written once every tile is back.
+      if (options_.checkpoint && signal_ == 0 && !finished() &&
           seconds_since(last_checkpoint) >= options_.checkpoint_interval_seconds) {
         options_.checkpoint(film_);
         last_checkpoint = Clock::now();
