@@ -15,7 +15,9 @@
 #include "core/app/bench_command.h"
 #include "core/app/commands.h"
 #include "core/app/merge_command.h"
+#include "core/app/mpi_world.h"
 #include "core/app/provenance.h"
+#include "core/app/rank_agreement.h"
 #include "core/app/validate_command.h"
 #include "core/error.h"
 #include "core/samplers.h"
@@ -218,10 +220,17 @@ void add_merge_options(CLI::App& merge, MergeOptions& o) {
 }
 
 /// One line, whatever CLI11 put in its message.
-void print_usage_error(const std::string& message, const std::string& help_hint) {
+std::string usage_error_line(const std::string& message, const std::string& help_hint) {
   std::string line = message;
   std::replace(line.begin(), line.end(), '\n', ' ');
-  std::fprintf(stderr, "prism: error: %s; see '%s'\n", line.c_str(), help_hint.c_str());
+  return line + "; see '" + help_hint + "'";
+}
+
+/// Under mpirun every rank parses its own command line: they must run the same command, else
+/// every rank exits with the first failing rank's error (RankError, printed by rank 0), so that
+/// no rank waits for others that are not coming.
+void agree_on_command(int exit_code, const std::string& message, const nlohmann::json& command) {
+  agree_across_ranks(RankStatus{exit_code, message, command}, "the command");
 }
 
 }  // namespace
@@ -272,26 +281,36 @@ int run_cli(int argc, const char* const* argv) {
 
   std::vector<std::string> args = arguments_with_default_command(argc, argv);
   if (args.empty()) {
-    std::fputs(app.help().c_str(), stdout);
+    agree_on_command(kExitSuccess, "", "help");
+    if (mpi::rank() == 0) std::fputs(app.help().c_str(), stdout);
     return kExitSuccess;
   }
   try {
     std::reverse(args.begin(), args.end());  // CLI11 consumes the vector from its back
     app.parse(args);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed on stdout
+    if (e.get_exit_code() == 0) {  // --help, --version: printed on stdout
+      agree_on_command(kExitSuccess, "", "help");
+      return mpi::rank() == 0 ? app.exit(e) : kExitSuccess;
+    }
     std::string hint = "prism --help";
     for (const CLI::App* command : app.get_subcommands()) {
       hint = "prism " + command->get_name() + " --help";
     }
-    print_usage_error(e.what(), hint);
+    const std::string message = usage_error_line(e.what(), hint);
+    agree_on_command(kExitBadInput, message, nullptr);
+    std::fprintf(stderr, "prism: error: %s\n", message.c_str());
     return kExitBadInput;
   }
+  const std::vector<CLI::App*> commands = app.get_subcommands();
+  agree_on_command(kExitSuccess, "", commands.empty() ? "" : commands.back()->get_name());
 
   if (render->parsed()) {
     render_options.command_line = quote_command_line(argc, argv);
     return run_render_command(render_options);
   }
+  // Under mpirun only `render` runs on every rank: the other commands run on rank 0 alone.
+  if (mpi::rank() != 0) return kExitSuccess;
   if (info->parsed()) return run_info_command(info_options);
   if (list->parsed()) return run_list_command();
   if (colorspaces->parsed()) return run_colorspaces_command(ocio_config);
