@@ -178,6 +178,34 @@ TEST(AppRender, SceneFileMaxDepthIsTheIntegratorsUnlessTheCommandLineGivesOne) {
   EXPECT_EQ(read_image_file(dirs.out / "set.exr").attribute("prism:max_depth"), "3");
 }
 
+TEST(AppRender, HomeworkFileDefectsWarnAndRenderAsTheHomework) {
+  // The camera <matrix> short of its last number (as in the homework's CBgems.dae): one
+  // warning line naming file and line, and the image of the intact file.
+  const TestDirs dirs("app_defects");
+  const std::string full = "1 0 0 0 0 0 -1 -3 0 1 0 1 0 0 0 1";
+  const std::string shortened = "1 0 0 0 0 0 -1 -3 0 1 0 1 0 0 0";
+  const std::string intact = dirs.scene("intact.dae", kTinyCollada);
+  const std::string text = replaced(kTinyCollada, full, shortened);
+  const std::string defective = dirs.scene("short.dae", text);
+  std::vector<std::vector<float>> pixels;
+  for (const std::string& scene : {intact, defective}) {
+    const auto out = dirs.out / (std::filesystem::path(scene).stem().string() + ".exr");
+    const auto r = run_prism({"render", scene, "-r", "32", "24", "-s", "2", "-q", "--exr-type",
+                              "float", "-t", "2", "-f", out.string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    if (scene == intact) {
+      EXPECT_EQ(r.err, "");
+    } else {
+      const int line = 1 + int(std::count(text.begin(), text.begin() + text.find(shortened), '\n'));
+      EXPECT_EQ(r.err, "prism: warning: " + defective + ":" + std::to_string(line) +
+                           ": <matrix>: 15 numbers, not 16; the missing ones are read as 0, as "
+                           "the CS184 homework does\n");
+    }
+    pixels.push_back(exr_pixels(out));
+  }
+  EXPECT_TRUE(pixels[0] == pixels[1]) << "the short camera matrix frames differently";
+}
+
 TEST(AppRender, DefaultSceneRendersWithoutSceneArgument) {
   const TestDirs dirs("app_default");
   const auto out = dirs.out / "default.exr";

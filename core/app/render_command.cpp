@@ -115,6 +115,9 @@ int run_render_command(const RenderOptions& given) {
 
   const std::filesystem::path scene_path = render_scene_path(options);
   Scene scene = load_scene(scene_path, SceneLoadOptions{.literal_camera = options.literal_camera});
+  for (const std::string& warning : scene.warnings) {
+    std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
+  }
   RenderSettings settings = resolve_render_settings(options, scene);
 
   const ColorPipeline pipeline(options.color);
