@@ -151,6 +151,82 @@ TEST(AppRender, IntegratorFlagsAreAliasesOfItsParameters) {
   EXPECT_FALSE(std::filesystem::exists(dirs.out / "unknown.exr"));
 }
 
+TEST(AppRender, TwoSidedEmittersFlagIsAnAliasOfItsParameter) {
+  const TestDirs dirs("app_two_sided");
+  const std::string scene = default_scene_path().string();  // a light quad under the ceiling
+  const auto render = [&](const std::string& output, std::vector<std::string> extra) {
+    std::vector<std::string> args = {
+        "render",     scene,   "-r",     "32", "24", "-s", "2",  "-q",
+        "--exr-type", "float", "--seed", "3",  "-t", "2",  "-f", (dirs.out / output).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_prism(args);
+  };
+  for (const auto& [output, extra] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"one.exr", {}},
+           {"flag.exr", {"--two-sided-emitters"}},
+           {"set.exr", {"--set", "path.two_sided_emitters=true"}},
+           {"direct.exr", {"--integrator", "direct", "--two-sided-emitters"}},
+           {"ao.exr", {"--integrator", "ao", "--two-sided-emitters"}}}) {
+    const ProgramResult r = render(output, extra);
+    ASSERT_EQ(r.exit_code, 0) << output << ": " << r.err;
+    EXPECT_EQ(r.err, "") << output;  // ignored by ao, silently, like -l
+  }
+  const std::vector<float> flag = exr_pixels(dirs.out / "flag.exr");
+  EXPECT_TRUE(flag == exr_pixels(dirs.out / "set.exr"));
+  EXPECT_FALSE(flag == exr_pixels(dirs.out / "one.exr")) << "the back of the light lit nothing";
+  expect_one_line_error(
+      render("conflict.exr", {"--two-sided-emitters", "--set", "path.two_sided_emitters=false"}), 2,
+      {"--two-sided-emitters", "path.two_sided_emitters=false"});
+}
+
+TEST(AppRender, AmbientLightIsASkyOnlyWhenAsked) {
+  // kTinyCollada lit by an ambient light: escaping camera rays are black, as in the homework,
+  // unless <integrator>.ambient_visible makes it a sky.
+  const TestDirs dirs("app_ambient");
+  const std::string scene = dirs.scene(
+      "ambient.dae",
+      replaced(kTinyCollada,
+               "<point>\n      <color>1 1 1</color><constant_attenuation>1</constant_attenuation>\n"
+               "      <linear_attenuation>0</linear_attenuation><quadratic_attenuation>0</"
+               "quadratic_attenuation>\n    </point>",
+               "<ambient><color>0.5 0.5 0.5</color></ambient>"));
+  for (const std::string integrator : {"path", "direct"}) {
+    for (const bool visible : {false, true}) {
+      SCOPED_TRACE(integrator + (visible ? " visible" : ""));
+      const auto out = dirs.out / (integrator + (visible ? "_sky.exr" : ".exr"));
+      // The file's camera looks level over the back wall: the top rows are sky.
+      std::vector<std::string> args = {"render",     scene,   "-r",
+                                       "32",         "24",    "-s",
+                                       "2",          "-q",    "--literal-camera",
+                                       "--exr-type", "float", "--integrator",
+                                       integrator,   "-f",    out.string()};
+      if (visible) args.insert(args.end(), {"--set", integrator + ".ambient_visible=true"});
+      const ProgramResult r = run_prism(args);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const ImageFileContents exr = read_image_file(out);
+      const int red = exr.channel("R"), depth = exr.channel("Z");
+      ASSERT_GE(red, 0);
+      ASSERT_GE(depth, 0);
+      int escaped = 0, sky = 0, lit = 0;
+      for (int y = 0; y < exr.image.height; ++y) {
+        for (int x = 0; x < exr.image.width; ++x) {
+          const float v = exr.image.at(x, y, red);
+          if (exr.image.at(x, y, depth) == 0.0f) {
+            ++escaped;
+            sky += v == 0.5f;
+            if (!visible) EXPECT_EQ(v, 0.0f) << x << "," << y;
+          } else {
+            lit += v > 0.0f;
+          }
+        }
+      }
+      EXPECT_GT(escaped, 0);
+      EXPECT_GT(lit, 0);
+      if (visible) EXPECT_GT(sky, 0);
+    }
+  }
+}
+
 TEST(AppRender, SceneFileMaxDepthIsTheIntegratorsUnlessTheCommandLineGivesOne) {
   const TestDirs dirs("app_scene_depth");
   std::ifstream in(default_scene_path());
