@@ -55,6 +55,10 @@ struct Scene {
   SceneRenderSettings settings;
   /// Set by the render driver from -e (scene files do not name one); none: no environment.
   std::optional<SceneEnvironment> environment;
+  /// Defects of the file the loader tolerated, in the order found, one line each
+  /// ("file:line: <element>: what was read instead"); the driver prints each as
+  /// "prism: warning: ...". They never change scene_hash().
+  std::vector<std::string> warnings;
 
   /// The surface at `hit` of `ray` (hit must come from an accelerator built on this geometry).
   SurfaceInteraction surface_at(const Ray& ray, const Hit& hit) const;

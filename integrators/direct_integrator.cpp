@@ -8,7 +8,9 @@ namespace {
 class DirectEstimator final : public PixelEstimator {
  public:
   DirectEstimator(const RenderContext& context, const LightTransportSettings& settings)
-      : context_(context), settings_(settings), shading_(context.scene, settings.bsdf) {}
+      : context_(context),
+        settings_(settings),
+        shading_(context.scene, settings.bsdf, settings.lights) {}
 
   Rgb li(const Ray& ray, Sampler& sampler, AovSample& aovs) const override;
 

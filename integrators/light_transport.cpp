@@ -17,6 +17,8 @@ LightTransportSettings::LightTransportSettings(const std::string& name, const Pa
     : light_samples(
           int(params.get_int(name + ".light_samples", kDefaultLightSamples, 1, kMaxLightSamples))),
       hemisphere(params.get_bool(name + ".hemisphere", false)) {
+  lights.ambient_visible = params.get_bool(name + ".ambient_visible", false);
+  lights.two_sided_emitters = params.get_bool(name + ".two_sided_emitters", false);
   const std::string model = params.get_string(name + ".microfacet", "beckmann");
   if (model == "beckmann") {
     bsdf.microfacet = MicrofacetModel::kBeckmann;
@@ -28,8 +30,9 @@ LightTransportSettings::LightTransportSettings(const std::string& name, const Pa
   }
 }
 
-ShadingContext::ShadingContext(const Scene& scene, const BsdfOptions& options)
-    : bsdfs(make_bsdfs(scene.materials, options)), lights(scene) {}
+ShadingContext::ShadingContext(const Scene& scene, const BsdfOptions& bsdf_options,
+                               const LightOptions& light_options)
+    : bsdfs(make_bsdfs(scene.materials, bsdf_options)), lights(scene, light_options) {}
 
 ShadingPoint::ShadingPoint(const SurfaceInteraction& si_in, const Ray& ray, const Bsdf& bsdf_in)
     : si(si_in),

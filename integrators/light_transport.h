@@ -18,11 +18,15 @@ namespace prism {
 /// - microfacet: beckmann (default) or ggx;
 /// - light_samples (default kDefaultLightSamples, in [1, kMaxLightSamples]; -l): samples per
 ///   non-delta light of the one-bounce estimators, or hemisphere rays per light;
-/// - hemisphere (default false; -H): the one-bounce estimate by uniform hemisphere sampling.
+/// - hemisphere (default false; -H): the one-bounce estimate by uniform hemisphere sampling;
+/// - ambient_visible (default false): ambient lights are a sky that escaping rays see (camera
+///   rays and bounces, MIS-weighted), not only lights found by light sampling (LightOptions);
+/// - two_sided_emitters (default false; --two-sided-emitters): emitters lit on both sides.
 struct LightTransportSettings {
   /// Throws Error(kUsage) naming the key on a bad value.
   LightTransportSettings(const std::string& name, const ParamSet& params);
   BsdfOptions bsdf;
+  LightOptions lights;
   int light_samples;
   bool hemisphere;
 };
@@ -31,7 +35,8 @@ struct LightTransportSettings {
 /// scene's lights. Built once per render from the Scene (which must outlive it), read-only
 /// afterwards.
 struct ShadingContext {
-  ShadingContext(const Scene& scene, const BsdfOptions& options);
+  ShadingContext(const Scene& scene, const BsdfOptions& bsdf_options,
+                 const LightOptions& light_options);
   std::vector<std::unique_ptr<Bsdf>> bsdfs;
   LightSet lights;
 };
@@ -69,7 +74,8 @@ Rgb estimate_direct_lights(const ShadingPoint& sp, Sampler& sampler, const Rende
 
 /// Light arriving at `sp` directly from emitters, by uniform hemisphere sampling (on wo's side):
 /// light_samples x (number of lights, at least 1) rays; light arrives only from emissive
-/// geometry hit and from infinite lights on escape.
+/// geometry hit and, on escape, from the infinite lights escaping rays see (so not from delta,
+/// CGL area or hidden ambient lights, as in the homework's hemisphere estimator).
 Rgb estimate_direct_hemisphere(const ShadingPoint& sp, Sampler& sampler,
                                const RenderContext& context, const ShadingContext& shading,
                                int light_samples);

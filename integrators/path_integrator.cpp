@@ -23,7 +23,7 @@ class PathEstimator final : public PixelEstimator {
   PathEstimator(const RenderContext& context, const PathIntegrator::Settings& settings)
       : context_(context),
         settings_(settings),
-        shading_(context.scene, settings.light_transport.bsdf) {}
+        shading_(context.scene, settings.light_transport.bsdf, settings.light_transport.lights) {}
 
   Rgb li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const override;
 

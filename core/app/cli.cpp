@@ -36,9 +36,13 @@ std::string render_footer() {
 scene file's settings, which override prism's defaults: resolution {} x {}, {} spp,
 integrator '{}', accelerator '{}', sampler '{}', seed {}, all hardware threads.
 
-Integrator flags: -l, -m and -H (and the scene file's max_depth) stand for the parameters
-<integrator>.light_samples, .max_depth and .hemisphere of the integrators that have them (see
-`prism list`), and are ignored by the others. --set with the same key must agree with them.
+Integrator flags: -l, -m, -H and --two-sided-emitters (and the scene file's max_depth) stand
+for the parameters <integrator>.light_samples, .max_depth, .hemisphere and .two_sided_emitters
+of the integrators that have them (see `prism list`), and are ignored by the others. --set with
+the same key must agree with them.
+
+Ambient lights light the scene but, as in the CS184 homework, rays that leave the scene see
+black; --set path.ambient_visible=true (or direct.ambient_visible) shows them as a sky.
 
 Output: -f FILE picks the format by extension. FILE.exr writes a scene-linear EXR (add --png
 for FILE.png beside it); FILE.png/.jpg/.tif writes only that display-referred image (add --exr
@@ -104,6 +108,9 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_flag("-H,--hemisphere", o.hemisphere_sampling,
                   "direct light by uniform hemisphere sampling (alias of "
                   "<integrator>.hemisphere=true: direct, path)");
+  render.add_flag("--two-sided-emitters", o.two_sided_emitters,
+                  "emissive surfaces and area lights emit from both sides, as in Blender (alias "
+                  "of <integrator>.two_sided_emitters=true: direct, path)");
   render.add_option("-b,--lens-radius", o.lens_radius, "thin-lens aperture radius (0: pinhole)");
   render.add_option("-d,--focal-distance", o.focal_distance, "distance of the plane in focus");
   render.add_option("-e,--environment", o.environment_map,

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <optional>
+#include <string>
 
 #include "accel/accelerator.h"
 #include "core/app/commands.h"
@@ -111,6 +113,9 @@ int run_info_command(const InfoOptions& options) {
 
   const Scene scene =
       load_scene(options.scene, SceneLoadOptions{.literal_camera = options.literal_camera});
+  for (const std::string& warning : scene.warnings) {
+    std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
+  }
   print_scene(scene);
 
   fmt::print("accelerators     (build on {} threads)\n", thread_limit.threads());

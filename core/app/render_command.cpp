@@ -173,6 +173,9 @@ std::unique_ptr<PreparedRender> prepare_render(const RenderOptions& options,
 
   r->scene_path = render_scene_path(options);
   r->scene = load_scene(r->scene_path, SceneLoadOptions{.literal_camera = options.literal_camera});
+  for (const std::string& warning : r->scene.warnings) {
+    if (writer) std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
+  }
   r->settings = resolve_render_settings(options, r->scene);
 
   r->pipeline = std::make_unique<ColorPipeline>(options.color);

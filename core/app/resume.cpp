@@ -77,6 +77,10 @@ void check_resume_identity(const json& identity, const RenderStateRecord& state,
       break;
     }
   }
+  // A checkpoint of an older prism may lack a field this one records.
+  for (const auto& [key, value] : identity.items()) {
+    if (field == "?" && !state.identity.contains(key)) field = key;
+  }
   const std::string why = field == "scene"
                               ? "the scene (its file, a file it names, or its colours) "
                                 "changed since the checkpoint"

@@ -71,7 +71,8 @@ CameraOptics parse_camera(const Document& doc, pugi::xml_node instance) {
 }
 
 DVec3 homework_view_direction(const DMat4& camera_world) {
-  const DVec3 p = transform_point(camera_world, DVec3(0.0, 0.0, -1.0));
+  // The homework's Vector4D::to3D(): x, y, z of M (0, 0, -1, 1), w dropped.
+  const DVec3 p(camera_world * glm::dvec4(0.0, 0.0, -1.0, 1.0));
   const double length = glm::length(p);
   if (!(length > 1e-12) || !std::isfinite(length)) return kDefaultViewDirection;
   return p / length;

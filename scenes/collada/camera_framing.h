@@ -26,8 +26,10 @@ struct CameraOptics {
 CameraOptics parse_camera(const Document& doc, pugi::xml_node instance);
 
 /// Where the homework's viewer puts the camera: c = normalize(M * (0, 0, -1, 1)), the point one
-/// unit in front of the camera node taken as a direction from the world origin. Falls back to
-/// kDefaultViewDirection when that point is the origin.
+/// unit in front of the camera node taken as a direction from the world origin. Like the
+/// homework, it reads only M's top three rows (no division by w), so a camera <matrix> short of
+/// its bottom row frames as it does there. Falls back to kDefaultViewDirection when that point
+/// is the origin.
 DVec3 homework_view_direction(const DMat4& camera_world);
 
 /// View direction used when a file has no camera: from the -Y side looking along +Y, which is
