@@ -13,6 +13,7 @@
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
 #include "color/output_plan.h"
+#include "color/texture_set.h"
 #include "core/app/commands.h"
 #include "core/app/component_params.h"
 #include "core/app/environment_map.h"
@@ -180,6 +181,10 @@ std::unique_ptr<PreparedRender> prepare_render(const RenderOptions& options,
 
   r->pipeline = std::make_unique<ColorPipeline>(options.color);
   r->pipeline->convert_scene_to_working(r->scene, r->pipeline->scene_file_space());
+  // Textures are scene colours too: read, checked and converted before any long work.
+  for (const std::string& warning : load_scene_textures(r->scene, *r->pipeline).warnings) {
+    if (writer) std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
+  }
   // The environment map is input like the scene: read and checked before any long work. Its
   // row 0 is the pole along the camera's up.
   if (!options.environment_map.empty()) {
@@ -266,6 +271,7 @@ int run_render_command(const RenderOptions& given) {
       .camera = r.camera,
       .sampler_prototype = *r.sampler,
       .spp = settings.spp,
+      .image_height = settings.height,
       .adaptive_batch = settings.adaptive_batch,
       .adaptive_tolerance = settings.adaptive_tolerance,
       .progress = nullptr,
