@@ -11,6 +11,7 @@
 #include "core/app/commands.h"
 #include "core/app/component_params.h"
 #include "core/parallel.h"
+#include "core/strings.h"
 #include "scenes/scene_loader.h"
 
 namespace prism {
@@ -64,6 +65,10 @@ void print_scene(const Scene& scene) {
              count_by_name(scene.lights, [](const Light& l) { return to_string(l.type); }));
   fmt::print("materials        {}\n",
              count_by_name(scene.materials, [](const Material& m) { return to_string(m.type); }));
+  std::vector<std::string> textures;
+  for (const TextureSource& t : scene.textures) textures.push_back(t.name);
+  fmt::print("textures         {}{}\n", textures.size(),
+             textures.empty() ? "" : " (" + join(textures, ", ") + ")");
   const Bounds3 bounds = g.bounds();
   if (bounds.empty()) {
     fmt::print("bounds           empty\n");
