@@ -79,6 +79,9 @@ class OiioTextureLookup final : public TextureLookup {
  public:
   OiioTextureLookup() : system_(OIIO::TextureSystem::create(/*shared=*/false)) {
     PRISM_CHECK(system_ != nullptr);
+    // Every "file" is in memory: none needs closing to spare file handles (and none is
+    // reopened through its reader).
+    system_->attribute("max_open_files", 1 << 20);
   }
   ~OiioTextureLookup() override { OIIO::TextureSystem::destroy(system_); }
   OiioTextureLookup(const OiioTextureLookup&) = delete;
