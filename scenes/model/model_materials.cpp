@@ -56,6 +56,7 @@ ModelMaterials::ModelMaterials(const aiScene& scene, const std::filesystem::path
     : scene_(scene), file_(file), out_(out) {
   const std::string ext = lower_case_extension(file);
   gltf_ = ext == ".gltf" || ext == ".glb";
+  has_materials_ = ext != ".stl" && ext != ".ply";
 }
 
 uint32_t ModelMaterials::index_of(unsigned index) {
@@ -107,8 +108,9 @@ Material ModelMaterials::convert(unsigned index) {
   const aiMaterial& a = *scene_.mMaterials[index];
   const std::string name = get_string(a, AI_MATKEY_NAME);
   if (!name.empty()) m.name = name;
-  // Assimp's stand-in for files without materials: prism's grey.
-  if (name == AI_DEFAULT_MATERIAL_NAME) return m;
+  // Assimp's stand-ins for files without materials (STL and PLY carry none; OBJ without a
+  // material library gets "DefaultMaterial"): prism's grey.
+  if (name == AI_DEFAULT_MATERIAL_NAME || !has_materials_) return m;
   const auto warn = [&](const std::string& what) {
     out_.warnings.push_back(file_.string() + ": material '" + m.name + "': " + what);
   };

@@ -20,8 +20,8 @@ namespace prism::model {
 inline constexpr float kMinMetalAlpha = 0.01f;
 /// Metallic factors from this value up make a conductor; below it, a diffuse surface.
 inline constexpr float kMetallicThreshold = 0.5f;
-/// Reflectance of Assimp's "DefaultMaterial", which it gives meshes of files without
-/// materials (OBJ without MTL, STL, PLY).
+/// Reflectance of the grey diffuse material of files without materials (STL, PLY, and OBJ
+/// without a material library, whose meshes Assimp gives its "DefaultMaterial").
 inline constexpr float kDefaultGrey = 0.5f;
 
 /// The materials of `scene` (read from `file`), converted as meshes ask for them, so that the
@@ -45,7 +45,8 @@ class ModelMaterials {
   std::filesystem::path file_;
   Scene& out_;
   std::unordered_map<unsigned, uint32_t> converted_;
-  bool gltf_;  ///< glTF's alpha mode decides whether opacity means transparency
+  bool gltf_;           ///< glTF's alpha mode decides whether opacity means transparency
+  bool has_materials_;  ///< false for formats that carry none (STL, PLY)
 };
 
 }  // namespace prism::model

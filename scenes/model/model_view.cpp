@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/strings.h"
 #include "scenes/collada/camera_framing.h"
 
 namespace prism::model {
@@ -28,10 +29,13 @@ struct CameraFrame {
   Vec3 position, ahead, forward, up;
 };
 
-CameraFrame camera_frame(const aiCamera& camera, const NodeTransforms& transforms) {
+CameraFrame camera_frame(const aiCamera& camera, const NodeTransforms& transforms, bool gltf) {
   const auto it = transforms.find(camera.mName.C_Str());
   const Mat4 m = it != transforms.end() ? it->second : Mat4(1.0f);
-  const Vec3 position(camera.mPosition.x, camera.mPosition.y, camera.mPosition.z);
+  // Assimp 5.2's glTF importer copies the camera node's translation into mPosition as well,
+  // though the node's transform already places the camera: counted once here.
+  const Vec3 position =
+      gltf ? Vec3(0.0f) : Vec3(camera.mPosition.x, camera.mPosition.y, camera.mPosition.z);
   const Vec3 look(camera.mLookAt.x, camera.mLookAt.y, camera.mLookAt.z);
   const Vec3 up(camera.mUp.x, camera.mUp.y, camera.mUp.z);
   const float look_length = glm::length(look);
@@ -87,13 +91,15 @@ Vec3 default_view_direction(const ModelAxes& axes) {
 Camera model_camera(const aiScene& scene, const NodeTransforms& transforms, const Bounds3& bounds,
                     const ModelAxes& axes, bool literal, const std::filesystem::path& file) {
   const aiCamera* camera = scene.mNumCameras > 0 ? scene.mCameras[0] : nullptr;
+  const std::string ext = lower_case_extension(file);
+  const bool gltf = ext == ".gltf" || ext == ".glb";
   if (!literal) {
     collada::CameraOptics optics;
     DVec3 c(default_view_direction(axes));
     if (camera != nullptr) {
       optics = camera_optics(*camera).value_or(collada::CameraOptics{});
       // The homework's rule: the point ahead of the camera as a direction from the origin.
-      const DVec3 ahead(camera_frame(*camera, transforms).ahead);
+      const DVec3 ahead(camera_frame(*camera, transforms, gltf).ahead);
       const double length = glm::length(ahead);
       if (length > 1e-12 && std::isfinite(length)) c = ahead / length;
     }
@@ -115,7 +121,7 @@ Camera model_camera(const aiScene& scene, const NodeTransforms& transforms, cons
                                  : "the camera's horizontal field of view is not in (0, 180) "
                                    "degrees");
   }
-  const CameraFrame frame = camera_frame(*camera, transforms);
+  const CameraFrame frame = camera_frame(*camera, transforms, gltf);
   const float forward_length = glm::length(frame.forward), up_length = glm::length(frame.up);
   if (!(forward_length > 0.0f) || !(up_length > 0.0f) || !std::isfinite(forward_length) ||
       !std::isfinite(up_length) || !is_finite(frame.position) ||
