@@ -12,6 +12,7 @@
 #include "core/app/component_params.h"
 #include "core/app/scene_summary.h"
 #include "core/parallel.h"
+#include "core/strings.h"
 #include "scenes/scene_loader.h"
 
 namespace prism {
@@ -32,6 +33,8 @@ void print_scene(const SceneSummary& s) {
   fmt::print("emissive meshes  {}\n", s.emissive_meshes);
   fmt::print("lights           {}\n", s.lights.to_string());
   fmt::print("materials        {}\n", s.materials.to_string());
+  fmt::print("textures         {}{}\n", s.textures.size(),
+             s.textures.empty() ? "" : " (" + join(s.textures, ", ") + ")");
   if (s.bounds.empty()) {
     fmt::print("bounds           empty\n");
   } else {

@@ -34,6 +34,7 @@ py::dict summary_dict(const SceneSummary& s) {
   out["emissive_meshes"] = s.emissive_meshes;
   out["lights"] = count_dict(s.lights);
   out["materials"] = count_dict(s.materials);
+  out["textures"] = py::cast(s.textures);
   out["bounds"] =
       s.bounds.empty()
           ? py::object(py::none())
@@ -132,7 +133,7 @@ void bind_scene(py::module_& m) {
       py::arg("path"), py::kw_only(), py::arg("literal_camera") = false,
       R"(Loads a scene file (.dae, .json, .obj, .ply) as `prism render` does and returns what
 `prism info` prints about it, as a dict: "source", "triangles", "meshes", "spheres",
-"emissive_meshes" (counts), "lights" and "materials" ({type: count}), "bounds" (((x, y, z),
+"emissive_meshes" (counts), "lights" and "materials" ({type: count}), "textures" (names), "bounds" (((x, y, z),
 (x, y, z)), or None without geometry), "camera" (position, target, up, hfov_deg, vfov_deg,
 lens_radius, focal_distance) and "settings" (the file's resolution, spp, max_depth,
 integrator, seed; None where it gives none); plus "geometry": {"meshes": [{"name",

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "color/texture_set.h"
 #include "core/app/component_params.h"
 #include "core/app/environment_map.h"
 #include "core/app/integrator_aliases.h"
@@ -86,6 +87,10 @@ std::unique_ptr<PreparedRender> prepare_render(const RenderOptions& options,
 
   r->pipeline = std::make_unique<ColorPipeline>(options.color);
   r->pipeline->convert_scene_to_working(r->scene, r->pipeline->scene_file_space());
+  // Textures are scene colours too: read, checked and converted before any long work.
+  for (const std::string& warning : load_scene_textures(r->scene, *r->pipeline).warnings) {
+    if (writer) std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
+  }
   // The environment map is input like the scene: read and checked before any long work. Its
   // row 0 is the pole along the camera's up.
   if (!options.environment_map.empty()) {
@@ -137,6 +142,7 @@ void start_render(PreparedRender& r, RenderRecord& record) {
       .camera = r.camera,
       .sampler_prototype = *r.sampler,
       .spp = r.settings.spp,
+      .image_height = r.settings.height,
       .adaptive_batch = r.settings.adaptive_batch,
       .adaptive_tolerance = r.settings.adaptive_tolerance,
       .progress = nullptr,

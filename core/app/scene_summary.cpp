@@ -51,6 +51,7 @@ SceneSummary summarize_scene(const Scene& scene) {
   }
   s.lights = count_by_name(scene.lights, [](const Light& l) { return to_string(l.type); });
   s.materials = count_by_name(scene.materials, [](const Material& m) { return to_string(m.type); });
+  for (const TextureSource& t : scene.textures) s.textures.push_back(t.name);
   s.bounds = g.bounds();
   s.camera = scene.camera;
   s.settings = scene.settings;

@@ -29,11 +29,12 @@ struct SceneSummary {
   size_t triangles = 0;
   size_t meshes = 0;
   size_t spheres = 0;
-  size_t emissive_meshes = 0;  ///< meshes whose material emits
-  CountByName lights;          ///< by light type
-  CountByName materials;       ///< by material type
-  Bounds3 bounds;              ///< of every primitive; empty() for a scene without any
-  Camera camera;               ///< as the file gives it (before the render fits its aspect)
+  size_t emissive_meshes = 0;         ///< meshes whose material emits
+  CountByName lights;                 ///< by light type
+  CountByName materials;              ///< by material type
+  std::vector<std::string> textures;  ///< texture names, in the scene's order
+  Bounds3 bounds;                     ///< of every primitive; empty() for a scene without any
+  Camera camera;                      ///< as the file gives it (before the render fits its aspect)
   SceneRenderSettings settings;
 };
 
