@@ -29,7 +29,7 @@ using namespace collada;
 // instanced millions of times) from exhausting the stack, time or memory. Real files are far
 // below them: the largest CS184 scene has 10 nodes and 34k triangles.
 constexpr int kMaxNodeDepth = 256;
-constexpr size_t kMaxNodeVisits = 1'000'000;
+constexpr size_t kMaxNodeVisits = 100'000;
 constexpr size_t kMaxTriangles = size_t{1} << 24;
 
 class SceneBuilder {
@@ -41,10 +41,15 @@ class SceneBuilder {
     if (depth > kMaxNodeDepth) {
       doc_.fail(node, "nodes nest deeper than " + std::to_string(kMaxNodeDepth) + " levels");
     }
+    if (std::find(path_.begin(), path_.end(), node) != path_.end()) {
+      doc_.fail(node, "node '" + std::string(node.attribute("id").value()) +
+                          "' instances itself through <instance_node> (a cycle)");
+    }
     if (++visits_ > kMaxNodeVisits) {
       doc_.fail(node,
                 "the scene instantiates more than " + std::to_string(kMaxNodeVisits) + " nodes");
     }
+    path_.push_back(node);
     std::vector<ShortMatrix> short_matrices;
     const DMat4 world = parent * node_transform(doc_, node, &short_matrices);
     for (const ShortMatrix& short_matrix : short_matrices) check_short_matrix(node, short_matrix);
@@ -67,6 +72,7 @@ class SceneBuilder {
       }
       // <instance_controller> (skinning) is not part of the CS184 dialect and is skipped.
     }
+    path_.pop_back();
   }
 
   pugi::xml_node camera_instance() const { return camera_instance_; }
@@ -172,6 +178,7 @@ class SceneBuilder {
   MaterialTable materials_;
   std::unordered_map<size_t, std::unique_ptr<Geometry>> geometries_;  // by xml_node hash
   size_t visits_ = 0;
+  std::vector<pugi::xml_node> path_;  // the nodes being visited, outermost first (cycles)
   size_t triangles_ = 0;
   pugi::xml_node camera_instance_;
   DMat4 camera_world_{1.0};
