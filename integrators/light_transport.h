@@ -11,6 +11,7 @@
 #include "integrators/integrator_defaults.h"
 #include "integrators/lights/light_set.h"
 #include "integrators/sampling/frame.h"
+#include "integrators/surface_textures.h"
 
 namespace prism {
 
@@ -31,15 +32,27 @@ struct LightTransportSettings {
   bool hemisphere;
 };
 
-/// Per-render shading state of the light-transport integrators: one BSDF per material and the
-/// scene's lights. Built once per render from the Scene (which must outlive it), read-only
-/// afterwards.
+/// Per-render shading state of the light-transport integrators: one BSDF per material, the
+/// texture lookups and the scene's lights. Built once per render from the Scene (which must
+/// outlive it), read-only afterwards. `filter` says how wide a pixel is for texture filtering
+/// (camera_texture_filter(); the default filters nothing).
 struct ShadingContext {
   ShadingContext(const Scene& scene, const BsdfOptions& bsdf_options,
-                 const LightOptions& light_options);
-  std::vector<std::unique_ptr<Bsdf>> bsdfs;
+                 const LightOptions& light_options, const TextureFilter& filter = {});
+  /// The BSDF at `si`: its material's shared one, or for a material with a reflectance
+  /// texture one built in `storage` from the texture there (untextured materials cost nothing
+  /// more than before). Valid as long as `storage` and this context.
+  const Bsdf& bsdf_at(const SurfaceInteraction& si, BsdfStorage& storage) const;
+
+  const Scene& scene;
+  BsdfOptions bsdf_options;
+  SurfaceTextures textures;
+  std::vector<std::unique_ptr<Bsdf>> bsdfs;  ///< per material
   LightSet lights;
 };
+
+/// The filter of the render `context` describes (camera_texture_filter()).
+TextureFilter texture_filter_of(const RenderContext& context);
 
 /// A surface hit ready for shading: the shading frame from the shading normal, the BSDF, and
 /// wo. World-space helpers apply the leak check with the geometric normal: a direction pair is

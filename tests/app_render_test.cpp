@@ -1,17 +1,21 @@
 // `prism render` end to end (core/app/render_command, render_options): the EXR and its
 // provenance, the output formats, the integrator flags as aliases of its parameters, the scene
-// file's settings, thread-count independence and the adaptive sampler's rate picture.
+// file's settings, thread-count independence, the adaptive sampler's rate picture, and the
+// render in memory of the Python module (render_in_memory()) against the file.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include "color/image_output.h"
+#include "core/app/render_driver.h"
 #include "scenes/scene_loader.h"
 #include "tests/support/app_test_helpers.h"
+#include "tests/support/image_compare.h"
 #include "tests/support/test_support.h"
 
 namespace prism::test {
@@ -310,6 +314,58 @@ TEST(AppRender, AdaptiveRenderWritesTheRatePictureBesideItsOutput) {
   }
   EXPECT_LT(total, 24.0 * 18 * 64);  // some pixels converged before 64 samples
   std::filesystem::remove_all(dir);
+}
+
+TEST(AppRender, InMemoryRenderHasThePixelsAndProvenanceOfTheFile) {
+  const TestDirs dirs("app_in_memory");
+  const std::string scene = (bundled_scene_dir() / "cornell_spheres.json").string();
+  const auto out = dirs.out / "a.exr";
+  const auto r = run_prism({"render", scene, "-r", "40", "30", "-s", "4", "--seed", "5", "-m", "3",
+                            "--exr-type", "float", "-q", "-f", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ImageFileContents file = read_image_file(out);
+
+  RenderOptions options;
+  options.scene = scene;
+  options.resolution = {40, 30};
+  options.spp = 4;
+  options.seed = "5";
+  options.max_depth = 3;
+  options.quiet = true;
+  int calls = 0;
+  const RenderedFrame frame = render_in_memory(options, [&] { ++calls; });
+  EXPECT_EQ(calls, 3);  // 4 passes of 1 sample: called between them
+  ASSERT_EQ(frame.image.width, 40);
+  ASSERT_EQ(frame.image.height, 30);
+  for (const std::string& channel : frame.image.channel_names) {
+    const std::vector<float> memory = channel_values(frame.image, channel);
+    const std::vector<float> written = channel_values(file.image, channel);
+    ASSERT_EQ(written.size(), memory.size()) << channel;
+    EXPECT_EQ(std::memcmp(written.data(), memory.data(), memory.size() * sizeof(float)), 0)
+        << channel;
+  }
+  // The attributes the file has, with the same values but for times and the command line.
+  for (const auto& [name, value] : frame.metadata) {
+    if (name == "prism:build_ms" || name == "prism:render_ms" ||
+        name == "prism:samples_per_second" || name == "prism:command_line") {
+      EXPECT_NE(file.attribute(name), "") << name;
+      continue;
+    }
+    EXPECT_EQ(value, file.attribute(name)) << name;
+  }
+}
+
+TEST(AppRender, InMemoryRenderStopsWhenTheHookThrows) {
+  RenderOptions options;
+  options.resolution = {16, 12};
+  options.spp = 8;
+  options.quiet = true;
+  int calls = 0;
+  const auto stop = [&] {
+    if (++calls == 2) throw Error(ErrorKind::kInternal, "stopped");
+  };
+  EXPECT_THROW(render_in_memory(options, stop), Error);
+  EXPECT_EQ(calls, 2);
 }
 
 }  // namespace

@@ -82,7 +82,8 @@ void add_color_options(CLI::App& command, ColorOptions& color) {
 }
 
 void add_render_options(CLI::App& render, RenderOptions& o) {
-  render.add_option("scene", o.scene, "scene file (.dae or .json)");
+  render.add_option("scene", o.scene,
+                    "scene file (.dae, .json) or model file (.obj .ply .stl .gltf .glb .fbx)");
   render
       .add_option("--accel", o.accelerator, "accelerator: " + accelerator_registry().names_joined())
       ->capture_default_str();
@@ -138,7 +139,7 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("--pass-samples", o.pass_samples,
                     "samples per pixel in each pass (default: spp / 64, at least 1)");
   render.add_flag("--literal-camera", o.literal_camera,
-                  "COLLADA: use the file's camera, not the homework framing");
+                  "COLLADA and model files: use the file's camera, not the homework framing");
   add_color_options(render, o.color);
   render.add_option("--exr-type", o.exr_options.pixel_type, "EXR pixel type: half or float");
   render.add_option("--exr-compression", o.exr_options.compression,
@@ -147,14 +148,16 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
 }
 
 void add_info_options(CLI::App& info, InfoOptions& o) {
-  info.add_option("scene", o.scene, "scene file (.dae or .json)")->required();
+  info.add_option("scene", o.scene,
+                  "scene file (.dae, .json) or model file (.obj .ply .stl .gltf .glb .fbx)")
+      ->required();
   info.add_option("--accel", o.accelerators, "accelerators to build (default: all)")
       ->delimiter(',')
       ->allow_extra_args(false);
   info.add_option("--set", o.set, "component parameter key=value")->allow_extra_args(false);
   info.add_option("-t,--threads", o.threads, "worker threads; 0 = all (default)");
   info.add_flag("--literal-camera", o.literal_camera,
-                "COLLADA: use the file's camera, not the homework framing");
+                "COLLADA and model files: use the file's camera, not the homework framing");
 }
 
 void add_convert_options(CLI::App& convert, ConvertOptions& o) {

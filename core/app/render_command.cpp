@@ -1,4 +1,5 @@
-// The render driver: one top-down function from options to files, in the order the work happens.
+// The render driver: one top-down function from options to files, in the order the work happens;
+// the steps it shares with the Python module are in render_driver.cpp.
 
 #include <fmt/format.h>
 
@@ -9,43 +10,25 @@
 #include <memory>
 #include <optional>
 
-#include "accel/accelerator.h"
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
 #include "color/output_plan.h"
 #include "core/app/commands.h"
-#include "core/app/component_params.h"
-#include "core/app/environment_map.h"
-#include "core/app/integrator_aliases.h"
 #include "core/app/interrupts.h"
 #include "core/app/mpi_render.h"
 #include "core/app/mpi_world.h"
 #include "core/app/progressive_render.h"
 #include "core/app/provenance.h"
 #include "core/app/rank_agreement.h"
+#include "core/app/render_driver.h"
 #include "core/app/render_state.h"
 #include "core/app/resume.h"
 #include "core/film.h"
-#include "core/parallel.h"
 #include "core/progress.h"
-#include "core/samplers.h"
 #include "core/strings.h"
-#include "integrators/integrator.h"
-#include "scenes/scene_loader.h"
 
 namespace prism {
 namespace {
-
-/// The scene's camera with the lens flags applied, fitted to the image's aspect ratio.
-Camera render_camera(const Scene& scene, const RenderOptions& options,
-                     const RenderSettings& settings) {
-  Camera camera = scene.camera;
-  if (options.lens_radius) camera.lens_radius = *options.lens_radius;
-  if (options.focal_distance) camera.focal_distance = *options.focal_distance;
-  camera.fit_to_aspect(float(settings.width) / float(settings.height));
-  camera.validate();
-  return camera;
-}
 
 /// The line printed after the render; it lists the image files, not the sample-rate picture.
 std::string summary_line(const std::filesystem::path& scene, const RenderSettings& settings,
@@ -69,21 +52,6 @@ std::string summary_line(const std::filesystem::path& scene, const RenderSetting
       scene.filename().string(), settings.accelerator, record.build_ms, settings.integrator,
       settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6, ranks,
       stopped, join(files));
-}
-
-/// Camera samples the film received (the adaptive sampler stops pixels early).
-double total_camera_samples(const Image& image, const RenderSettings& settings) {
-  const auto it =
-      std::find(image.channel_names.begin(), image.channel_names.end(), "sampleCount.Y");
-  if (it == image.channel_names.end()) {
-    return double(settings.width) * settings.height * settings.spp;
-  }
-  const int channel = static_cast<int>(it - image.channel_names.begin());
-  double total = 0.0;
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) total += image.at(x, y, channel);
-  }
-  return total;
 }
 
 /// Whether the render is a part of a frame: a crop or a sample range.
@@ -126,89 +94,6 @@ RenderOptions options_to_render(const RenderOptions& given, std::optional<Render
   return options;
 }
 
-/// Everything a render needs from its options up to the (possibly long) build, every input
-/// read and checked.
-struct PreparedRender {
-  RenderOptions options;
-  OutputPlan outputs;
-  ParamSet params;
-  std::unique_ptr<ThreadLimit> thread_limit;
-  std::unique_ptr<Accelerator> accel;
-  std::filesystem::path scene_path;
-  Scene scene;
-  RenderSettings settings;
-  std::unique_ptr<ColorPipeline> pipeline;
-  nlohmann::json identity;
-  std::unique_ptr<Integrator> integrator;
-  std::unique_ptr<Sampler> sampler;
-  Camera camera;
-};
-
-/// Reads and checks everything before the build, in the order that makes mistakes cheap. Only
-/// the rank that writes (rank 0) checks the output files and prints warnings.
-std::unique_ptr<PreparedRender> prepare_render(const RenderOptions& options,
-                                               const std::optional<RenderState>& resumed,
-                                               const std::filesystem::path& resume_file) {
-  const bool writer = mpi::rank() == 0;
-  auto r = std::make_unique<PreparedRender>();
-  r->options = options;
-  // Every check that needs no file comes first, so that a typo costs nothing.
-  validate_render_options(options);
-  if (mpi::size() > 1 && options.time_limit) {
-    throw Error(ErrorKind::kUsage,
-                "cannot be used under MPI: tiles are rendered with all their samples, so a "
-                "distributed render cannot stop at a pass boundary (stop it with SIGTERM and "
-                "--checkpoint instead)",
-                ErrorLocation{{}, 0, "--time-limit"});
-  }
-  // Every file to write, checked (extensions, EXR encoding, writable folders) before the work.
-  r->outputs = resolve_output_plan(options);
-  if (writer) {
-    validate_outputs(r->outputs);
-    if (!options.checkpoint.empty()) check_output_writable(options.checkpoint);
-  }
-  r->params = parse_param_assignments(options.set);
-  r->thread_limit = std::make_unique<ThreadLimit>(options.threads);
-  r->accel = accelerator_registry().create(options.accelerator, r->params);
-
-  r->scene_path = render_scene_path(options);
-  r->scene = load_scene(r->scene_path, SceneLoadOptions{.literal_camera = options.literal_camera});
-  for (const std::string& warning : r->scene.warnings) {
-    if (writer) std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
-  }
-  r->settings = resolve_render_settings(options, r->scene);
-
-  r->pipeline = std::make_unique<ColorPipeline>(options.color);
-  r->pipeline->convert_scene_to_working(r->scene, r->pipeline->scene_file_space());
-  // The environment map is input like the scene: read and checked before any long work. Its
-  // row 0 is the pole along the camera's up.
-  if (!options.environment_map.empty()) {
-    EnvironmentMap environment = load_environment_map(options.environment_map, *r->pipeline);
-    for (const auto& warning : environment.warnings) {
-      if (writer) std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
-    }
-    r->scene.environment = SceneEnvironment{.image = std::move(environment.image),
-                                            .up = r->scene.camera.up,
-                                            .file = options.environment_map,
-                                            .color_space = environment.color_space};
-  }
-  // What decides every pixel: a resumed render must be the one its checkpoint started.
-  r->identity = render_identity(options, r->scene, *r->pipeline);
-  if (resumed) check_resume_identity(r->identity, resumed->record, resume_file);
-
-  // Every component exists before the (possibly long) build, so mistyped names and --set keys
-  // fail fast. -l, -m, -H (and the scene's max_depth) reach the integrator as its parameters.
-  add_integrator_aliases(r->options, r->scene, r->settings.integrator, r->params);
-  r->integrator = integrator_registry().create(r->settings.integrator, r->params);
-  r->sampler = create_sampler(r->settings.sampler, r->settings.seed);
-  r->sampler->set_sample_count(r->settings.spp);
-  check_component_params(r->params, {{"accelerator", r->settings.accelerator},
-                                     {"integrator", r->settings.integrator}});
-  record_integrator_aliases(r->params, r->settings);
-  r->camera = render_camera(r->scene, r->options, r->settings);
-  return r;
-}
-
 /// What every rank of a distributed render must share: the identity, and the pixels and samples
 /// rendered (which the identity leaves out).
 nlohmann::json frame_of(const PreparedRender& r) {
@@ -234,7 +119,7 @@ int run_render_command(const RenderOptions& given) {
   std::unique_ptr<PreparedRender> prepared;
   RankStatus status;
   try {
-    prepared = prepare_render(options, resumed, given.resume);
+    prepared = prepare_render(options, RenderDestination::kFiles, resumed, given.resume);
     if (distributed) status.data = frame_of(*prepared);
   } catch (...) {
     if (!distributed) throw;
@@ -249,33 +134,16 @@ int run_render_command(const RenderOptions& given) {
   // From here the ranks depend on each other: a rank failing alone ends them all.
   MpiJob job;
 
-  RenderRecord record;
-  record.scene = r.scene_path.string();
-  record.command_line = options.command_line;
-  if (r.scene.environment) {
-    record.environment = r.scene.environment->file;
-    record.environment_space = r.scene.environment->color_space;
-  }
-  r.accel->build(r.scene.geometry);
-  record.build_ms = r.accel->stats().build_ms;
+  RenderRecord record = start_record(r);
+  start_render(r, record);
+  const TileRenderer& renderer = *r.renderer;
 
   const RenderSchedule schedule(settings.window, settings.samples, settings.pass_samples);
-  const RenderContext context{
-      .scene = r.scene,
-      .accel = *r.accel,
-      .camera = r.camera,
-      .sampler_prototype = *r.sampler,
-      .spp = settings.spp,
-      .adaptive_batch = settings.adaptive_batch,
-      .adaptive_tolerance = settings.adaptive_tolerance,
-      .progress = nullptr,
-  };
-  const std::unique_ptr<const TileRenderer> renderer = r.integrator->start(context);
   if (!writer) {
     // A worker: renders what rank 0 hands out, and exits as rank 0 says.
     const InterruptHandlers interrupts;
     MpiChannel channel;
-    const int code = serve_render(*renderer, schedule, settings.width, settings.height, channel,
+    const int code = serve_render(renderer, schedule, settings.width, settings.height, channel,
                                   r.thread_limit->threads(), &interrupts.stop_signal());
     channel.flush();
     job.close();
@@ -335,7 +203,7 @@ int run_render_command(const RenderOptions& given) {
   if (distributed) {
     channel.emplace();
     const DistributedResult distributed_result = coordinate_render(
-        *renderer, schedule, film, *channel,
+        renderer, schedule, film, *channel,
         DistributedOptions{.lanes = r.thread_limit->threads(),
                            .stop_signal = &interrupts.stop_signal(),
                            .checkpoint = checkpoint,
@@ -346,7 +214,7 @@ int run_render_command(const RenderOptions& given) {
     record.mpi_bytes = distributed_result.bytes_exchanged;
   } else {
     result = render_progressively(
-        *renderer, schedule, film,
+        renderer, schedule, film,
         ProgressiveOptions{.time_limit_seconds = options.time_limit.value_or(0.0),
                            .stop_signal = &interrupts.stop_signal(),
                            .checkpoint = checkpoint,
@@ -367,9 +235,9 @@ int run_render_command(const RenderOptions& given) {
                  static_cast<unsigned long long>(record.non_finite_samples));
   }
 
-  const Image image = film.resolve();
-  record.camera_samples = total_camera_samples(image, settings);
-  const ImageMetadata metadata = make_provenance(settings, r.params, record);
+  const RenderedFrame frame = resolve_frame(r, film, record);
+  const Image& image = frame.image;
+  const ImageMetadata& metadata = frame.metadata;
   if (is_part(settings) && outputs.files.front().kind == OutputKind::kSceneLinearExr) {
     // A part of a frame keeps its exact sums, for `prism merge`.
     state.render_ms = record.render_ms;

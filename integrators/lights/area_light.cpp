@@ -61,8 +61,9 @@ Rgb ParallelogramLight::power() const {
   return (two_sided_ ? 2.0f : 1.0f) * kPi * area_ * radiance_;
 }
 
-MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sided)
-    : mesh_(mesh), radiance_(radiance), two_sided_(two_sided) {
+MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sided,
+                     EmissionTexture texture)
+    : mesh_(mesh), radiance_(radiance), texture_(texture), two_sided_(two_sided) {
   std::vector<float> areas(mesh.triangles.size());
   normals_.resize(mesh.triangles.size());
   double total = 0.0;
@@ -93,7 +94,17 @@ std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
   const glm::uvec3 t = mesh_.triangles[i];
   const Vec3 q = (1.0f - b.x - b.y) * mesh_.positions[t.x] + b.x * mesh_.positions[t.y] +
                  b.y * mesh_.positions[t.z];
-  return toward_point(p, q, normals_[i], two_sided_, 1.0f / area_, radiance_);
+  Rgb radiance = radiance_;
+  if (texture_) {
+    // The uv of the point as Scene::surface_at() interpolates it (barycentrics without uvs).
+    Vec2 uv = b;
+    if (!mesh_.uvs.empty()) {
+      uv = (1.0f - b.x - b.y) * mesh_.uvs[3 * i] + b.x * mesh_.uvs[3 * i + 1] +
+           b.y * mesh_.uvs[3 * i + 2];
+    }
+    radiance *= glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
+  }
+  return toward_point(p, q, normals_[i], two_sided_, 1.0f / area_, radiance);
 }
 
 float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const {
@@ -108,20 +119,34 @@ float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) cons
 }
 
 Rgb MeshLight::le(const SurfaceInteraction& light_hit, const Vec3& wo) const {
-  return emitting_cos(light_hit.geometric_normal, wo, two_sided_) > 0.0f ? radiance_ : Rgb(0.0f);
+  if (emitting_cos(light_hit.geometric_normal, wo, two_sided_) <= 0.0f) return Rgb(0.0f);
+  if (!texture_) return radiance_;
+  return radiance_ * glm::max(texture_.textures->at(texture_.texture, light_hit), Rgb(0.0f));
 }
 
-Rgb MeshLight::power() const { return (two_sided_ ? 2.0f : 1.0f) * kPi * area_ * radiance_; }
+Rgb MeshLight::power() const {
+  const Rgb mean =
+      texture_ ? glm::max(texture_.textures->average(texture_.texture), Rgb(0.0f)) : Rgb(1.0f);
+  return (two_sided_ ? 2.0f : 1.0f) * kPi * area_ * radiance_ * mean;
+}
 
-SphereLight::SphereLight(const Sphere& sphere, const Rgb& radiance, bool two_sided)
-    : sphere_(sphere), radiance_(radiance), two_sided_(two_sided) {}
+SphereLight::SphereLight(const Sphere& sphere, const Rgb& radiance, bool two_sided,
+                         EmissionTexture texture)
+    : sphere_(sphere), radiance_(radiance), texture_(texture), two_sided_(two_sided) {}
 
 std::optional<LightLiSample> SphereLight::sample_li(const Vec3& p, Vec2 u) const {
   const float area = 4.0f * kPi * sphere_.radius * sphere_.radius;
   if (!(area > 0.0f)) return std::nullopt;
   const Vec3 n = square_to_uniform_sphere(u);
-  return toward_point(p, sphere_.center + sphere_.radius * n, n, two_sided_, 1.0f / area,
-                      radiance_);
+  Rgb radiance = radiance_;
+  if (texture_) {
+    // The uv of the point as Scene::surface_at() parameterises spheres.
+    float phi = std::atan2(n.y, n.x);
+    if (phi < 0.0f) phi += 2.0f * kPi;
+    const Vec2 uv(phi / (2.0f * kPi), std::acos(std::clamp(n.z, -1.0f, 1.0f)) / kPi);
+    radiance *= glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
+  }
+  return toward_point(p, sphere_.center + sphere_.radius * n, n, two_sided_, 1.0f / area, radiance);
 }
 
 float SphereLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const {
@@ -136,12 +161,16 @@ float SphereLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) co
 }
 
 Rgb SphereLight::le(const SurfaceInteraction& light_hit, const Vec3& wo) const {
-  return emitting_cos(light_hit.geometric_normal, wo, two_sided_) > 0.0f ? radiance_ : Rgb(0.0f);
+  if (emitting_cos(light_hit.geometric_normal, wo, two_sided_) <= 0.0f) return Rgb(0.0f);
+  if (!texture_) return radiance_;
+  return radiance_ * glm::max(texture_.textures->at(texture_.texture, light_hit), Rgb(0.0f));
 }
 
 Rgb SphereLight::power() const {
+  const Rgb mean =
+      texture_ ? glm::max(texture_.textures->average(texture_.texture), Rgb(0.0f)) : Rgb(1.0f);
   return (two_sided_ ? 2.0f : 1.0f) * kPi * 4.0f * kPi * sphere_.radius * sphere_.radius *
-         radiance_;
+         radiance_ * mean;
 }
 
 }  // namespace prism

@@ -6,6 +6,7 @@
 #include "core/scene.h"
 #include "integrators/lights/light_source.h"
 #include "integrators/sampling/distribution.h"
+#include "integrators/surface_textures.h"
 
 namespace prism {
 
@@ -25,14 +26,17 @@ struct LightOptions {
 /// Every light of a scene, built once per render: the scene's point, spot, directional,
 /// ambient and CGL area lights, its environment map if any (Scene::environment, an
 /// EnvironmentLight with its pole along the map's `up`), plus one area light per emissive mesh
-/// and per emissive sphere. An area light marked `duplicates_emissive_mesh` is left out: its
+/// and per emissive sphere (Material::is_emissive(), with a radiance other than black; a
+/// radiance texture is looked up through `textures`, which must then be given and outlive the
+/// set). An area light marked `duplicates_emissive_mesh` is left out: its
 /// emissive mesh is the light (visible to rays, sampled by area), so the energy is counted once.
 /// `options` decide whether ambient lights are seen and emitters lit on both sides.
 /// Chooses lights in proportion to power. Keeps references into `scene`, which must outlive it.
 /// Thread-safe.
 class LightSet {
  public:
-  explicit LightSet(const Scene& scene, const LightOptions& options = {});
+  explicit LightSet(const Scene& scene, const LightOptions& options = {},
+                    const SurfaceTextures* textures = nullptr);
 
   const std::vector<std::unique_ptr<LightSource>>& lights() const { return lights_; }
   bool empty() const { return lights_.empty(); }
