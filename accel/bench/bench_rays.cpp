@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -51,6 +52,15 @@ struct SurfacePoint {
   Vec3 error;      ///< SurfaceInteraction::position_error
   Vec3 normal;     ///< geometric, facing the incoming ray
   uint32_t pixel;  ///< of the camera ray this point descends from
+
+  /// What spawn_ray() and spawn_ray_to() read of the hit.
+  SurfaceInteraction interaction() const {
+    SurfaceInteraction si;
+    si.position = position;
+    si.position_error = error;
+    si.geometric_normal = normal;
+    return si;
+  }
 };
 
 // Hit points of `rays` (in ray order, misses dropped), traced in parallel.
@@ -83,8 +93,7 @@ BenchRaySet bounce(const std::string& name, const std::vector<SurfacePoint>& poi
                   std::vector<uint32_t>(points.size())};
   for (size_t i = 0; i < points.size(); ++i) {
     const Vec3 d = cosine_hemisphere(points[i].normal, rng.get(i, 0), rng.get(i, 1));
-    const SurfacePoint& p = points[i];
-    set.rays[i] = Ray{offset_ray_origin(p.position, p.error, p.normal, d), 0.0f, d, kInfinity};
+    set.rays[i] = spawn_ray(points[i].interaction(), d);
     set.pixels[i] = points[i].pixel;
   }
   return set;
@@ -109,12 +118,12 @@ Ray shadow_ray(const SurfacePoint& p, const Light* light, const Bounds3& bounds,
   } else {
     target = light->position;
   }
-  if (distant) {
-    return Ray{offset_ray_origin(p.position, p.error, p.normal, dir), 0.0f, dir, kInfinity};
-  }
-  const Vec3 origin = offset_ray_origin(p.position, p.error, p.normal, target - p.position);
-  // Stop just short of the light so that an emitter's own geometry does not count.
-  return Ray{origin, 0.0f, target - origin, 1.0f - 1e-3f};
+  if (distant) return spawn_ray(p.interaction(), dir);
+  // As the integrators spawn it (error-bounded at both ends), and at least 1e-3 of the way short
+  // of the light so that an emitter's own geometry does not count.
+  Ray r = spawn_ray_to(p.interaction(), target);
+  r.tmax = std::min(r.tmax, 1.0f - 1e-3f);
+  return r;
 }
 
 constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'R', 'Y', '2'};
