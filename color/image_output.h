@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -66,7 +67,14 @@ struct ImageFileContents {
   int channel(const std::string& name) const;
 };
 
-/// Reads an image file (for tests and comparisons). Throws Error(kInput) naming the path.
+/// Most values (width x height x channels) read_image_file reads from one file: 2^30 floats,
+/// 4 GiB, e.g. a 16384 x 16384 RGBA image.
+inline constexpr uint64_t kMaxImageFileValues = uint64_t(1) << 30;
+
+/// Reads an image file (environment maps, `prism convert`, state files, tests). Throws
+/// Error(kInput) naming the path when the file cannot be read or its header declares no pixels
+/// or more than kMaxImageFileValues values; Error(kResource) when the pixels do not fit in
+/// memory.
 ImageFileContents read_image_file(const std::filesystem::path& path);
 
 }  // namespace prism

@@ -4,7 +4,10 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
+#include <new>
+#include <string>
 
 #include "color/image_output.h"
 #include "core/error.h"
@@ -31,6 +34,25 @@ ImageFileContents read_image_file(const std::filesystem::path& path) {
                 ErrorLocation{path.string(), 0, {}});
   }
   const OIIO::ImageSpec& spec = in->spec();
+  const ErrorLocation where{path.string(), 0, {}};
+  // The header's sizes are checked before anything is allocated: a file may declare any size
+  // (a negative one, or 100000 x 100000 in a few bytes).
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    throw Error(ErrorKind::kInput,
+                "the header declares " + std::to_string(spec.width) + " x " +
+                    std::to_string(spec.height) + " pixels of " + std::to_string(spec.nchannels) +
+                    " channels: not an image",
+                where);
+  }
+  const uint64_t values = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(spec.nchannels);
+  if (values > kMaxImageFileValues) {
+    throw Error(ErrorKind::kInput,
+                "the header declares " + std::to_string(spec.width) + " x " +
+                    std::to_string(spec.height) + " pixels of " + std::to_string(spec.nchannels) +
+                    " channels, more than the " + std::to_string(kMaxImageFileValues) +
+                    " values prism reads from one image",
+                where);
+  }
   ImageFileContents contents;
   contents.format = in->format_name();
   contents.image.width = spec.width;
@@ -40,7 +62,14 @@ ImageFileContents read_image_file(const std::filesystem::path& path) {
   contents.image.full_width = spec.full_width;
   contents.image.full_height = spec.full_height;
   contents.image.channel_names = spec.channelnames;
-  contents.image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
+  try {
+    contents.image.pixels.resize(size_t(values));
+  } catch (const std::bad_alloc&) {
+    throw Error(ErrorKind::kResource,
+                "out of memory for the " + std::to_string(spec.width) + " x " +
+                    std::to_string(spec.height) + " pixels of the image",
+                where);
+  }
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
                       contents.image.pixels.data())) {
     throw Error(ErrorKind::kInput, "cannot read the pixels: " + in->geterror(),

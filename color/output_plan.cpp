@@ -1,6 +1,7 @@
 #include "color/output_plan.h"
 
 #include <optional>
+#include <system_error>
 
 #include "color/image_writers.h"
 #include "color/sample_rate_image.h"
@@ -91,6 +92,37 @@ void validate_outputs(const OutputPlan& plan) {
                 ErrorLocation{{}, 0, file.option});
   }
   for (const PlannedOutput& file : plan.files) check_output_writable(file.path);
+}
+
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code ec;
+  if (std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec)) {
+    const bool same = std::filesystem::equivalent(a, b, ec);
+    if (!ec) return same;
+  }
+  const auto absolute_a = std::filesystem::absolute(a, ec).lexically_normal();
+  const auto absolute_b = std::filesystem::absolute(b, ec).lexically_normal();
+  return absolute_a == absolute_b;
+}
+
+std::vector<NamedInput> named_outputs(const OutputPlan& plan) {
+  std::vector<NamedInput> named;
+  for (const PlannedOutput& file : plan.files) named.push_back({file.option, file.path});
+  return named;
+}
+
+void refuse_overwriting_inputs(const std::vector<NamedInput>& outputs,
+                               const std::vector<NamedInput>& inputs) {
+  for (const NamedInput& output : outputs) {
+    for (const NamedInput& input : inputs) {
+      if (output.path.empty() || input.path.empty() || !same_file(output.path, input.path)) {
+        continue;
+      }
+      throw Error(ErrorKind::kUsage,
+                  "is also " + input.what + ": writing it would destroy what the run reads",
+                  ErrorLocation{output.path.string(), 0, output.what});
+    }
+  }
 }
 
 void write_outputs(const OutputPlan& plan, const Image& image, const ImageMetadata& metadata,

@@ -52,6 +52,24 @@ struct OutputPlan {
 /// (Error(kOutput) naming the path). Leaves nothing behind.
 void validate_outputs(const OutputPlan& plan);
 
+/// An input file of a run and what it is ("the scene file", "the environment map (-e)", ...).
+struct NamedInput {
+  std::string what;
+  std::filesystem::path path;
+};
+
+/// Whether `a` and `b` are one file: the same file when both exist (through links, `..`, a
+/// relative path), else the same absolute path.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+/// The files of `plan`, each with the option that asked for it.
+std::vector<NamedInput> named_outputs(const OutputPlan& plan);
+
+/// Throws Error(kUsage) naming the output (path and option) when one of `outputs` is one of
+/// `inputs` (same_file): writing it would destroy a file the run reads. Empty paths are skipped.
+void refuse_overwriting_inputs(const std::vector<NamedInput>& outputs,
+                               const std::vector<NamedInput>& inputs);
+
 /// Writes every file of a validated `plan` from `image` (working-space beauty and AOVs, as the
 /// film resolves it), in order, each atomically (see write_exr): EXRs as write_exr with
 /// plan.exr, display images as write_display_image, the sample-rate picture (which needs the

@@ -348,7 +348,11 @@ int run_merge_command(const MergeOptions& options) {
   RenderOptions probe;
   probe.output = options.output;
   probe.png = options.png;
-  validate_outputs(resolve_output_plan(probe));
+  const OutputPlan probe_plan = resolve_output_plan(probe);
+  validate_outputs(probe_plan);
+  std::vector<NamedInput> inputs;
+  for (const std::string& part : options.parts) inputs.push_back({"a part to merge", part});
+  refuse_overwriting_inputs(named_outputs(probe_plan), inputs);
 
   // First look, at the headers only: do the parts belong together and fill a box?
   std::vector<PartHeader> parts;

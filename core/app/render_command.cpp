@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <new>
 #include <optional>
 
 #include "color/color_pipeline.h"
@@ -105,9 +106,8 @@ nlohmann::json frame_of(const PreparedRender& r) {
   return frame;
 }
 
-}  // namespace
-
-int run_render_command(const RenderOptions& given) {
+/// run_render_command without its out-of-memory message.
+int render_command(const RenderOptions& given) {
   // Under mpirun (mpi::size() > 1) every rank runs this; rank 0 coordinates and writes.
   const bool distributed = mpi::size() > 1;
   const bool writer = mpi::rank() == 0;
@@ -255,6 +255,25 @@ int run_render_command(const RenderOptions& given) {
   if (channel) finish_workers(*channel, code);
   job.close();
   return code;
+}
+
+}  // namespace
+
+int run_render_command(const RenderOptions& given) {
+  try {
+    return render_command(given);
+  } catch (const std::bad_alloc&) {
+    // Under `ulimit -v` (or on a small machine) the scene, the accelerator or the film may not
+    // fit: say which scene, and what to change. Nothing has been written (the writers are
+    // atomic).
+    const std::string scene = given.resume.empty() || !given.scene.empty()
+                                  ? render_scene_path(given).string()
+                                  : given.resume;
+    throw Error(ErrorKind::kResource,
+                "out of memory rendering the scene (raise the memory limit, e.g. ulimit -v, or "
+                "lower --resolution, the scene's size or --threads)",
+                ErrorLocation{scene, 0, {}});
+  }
 }
 
 }  // namespace prism

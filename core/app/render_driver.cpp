@@ -2,6 +2,8 @@
 
 #include "core/app/render_driver.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 
@@ -28,7 +30,19 @@ Camera render_camera(const Scene& scene, const RenderOptions& options,
   if (options.lens_radius) camera.lens_radius = *options.lens_radius;
   if (options.focal_distance) camera.focal_distance = *options.focal_distance;
   camera.fit_to_aspect(float(settings.width) / float(settings.height));
-  camera.validate();
+  try {
+    camera.validate();
+  } catch (const Error& e) {
+    // The scene's camera passed on load: fitted to this image (or with these lens options) it
+    // no longer does, e.g. a field of view of 1e-45 degrees that the fit turns into 0. Name
+    // the scene file all the same.
+    ErrorLocation where = e.location();
+    if (where.file.empty()) where.file = scene.source;
+    throw Error(e.kind(),
+                e.message() + fmt::format(" (the scene's camera fitted to {} x {})", settings.width,
+                                          settings.height),
+                where);
+  }
   return camera;
 }
 
@@ -71,6 +85,18 @@ std::unique_ptr<PreparedRender> prepare_render(const RenderOptions& options,
     r->outputs = resolve_output_plan(options);
     if (writer) {
       validate_outputs(r->outputs);
+      // An output over an input (the scene, the environment map, the checkpoint resumed from)
+      // would destroy it, and so would the checkpoint over the scene or the map; the checkpoint
+      // over an image, one of the two. (The checkpoint over the one resumed from is the rule.)
+      const std::vector<NamedInput> images = named_outputs(r->outputs);
+      const NamedInput scene{"the scene file", render_scene_path(options)};
+      const NamedInput environment{"the environment map (-e)", options.environment_map};
+      const NamedInput checkpoint{"the --checkpoint file", options.checkpoint};
+      refuse_overwriting_inputs(images, {scene,
+                                         environment,
+                                         {"the checkpoint resumed from (--resume)", resume_file},
+                                         checkpoint});
+      refuse_overwriting_inputs({{"--checkpoint", options.checkpoint}}, {scene, environment});
       if (!options.checkpoint.empty()) check_output_writable(options.checkpoint);
     }
   }

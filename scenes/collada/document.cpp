@@ -108,12 +108,19 @@ Document::Document(const std::filesystem::path& path) : file_(path.string()) {
     fail(top, "the root element must be <COLLADA>");
   }
   // Index every id with an explicit walk: recursion would let a deeply nested file overflow
-  // the stack. The first element wins when an id repeats.
+  // the stack. An id that repeats is an error: XML ids are unique, and a reference to it would
+  // silently pick one of the elements.
   pugi::xml_node node = top;
   while (node) {
     if (node.type() == pugi::node_element) {
       const pugi::xml_attribute id = node.attribute("id");
-      if (id && *id.value()) ids_.try_emplace(std::string_view(id.value()), node);
+      if (id && *id.value()) {
+        const auto [at, inserted] = ids_.try_emplace(std::string_view(id.value()), node);
+        if (!inserted) {
+          fail(node, "duplicate id '" + std::string(id.value()) + "' (first at line " +
+                         std::to_string(line_of(at->second)) + ")");
+        }
+      }
     }
     if (node.first_child()) {
       node = node.first_child();

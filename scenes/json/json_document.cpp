@@ -3,16 +3,43 @@
 #include "core/strings.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <set>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace prism::json {
 namespace {
 
 /// Thrown by the parser callback to stop parsing of over-deep input.
 struct TooDeep {};
+
+/// Thrown by the parser callback at the second `key` of one object, its `occurrence`-th in the
+/// text.
+struct DuplicateKey {
+  std::string key;
+  int occurrence = 0;
+};
+
+/// The line of the `occurrence`-th (1-based) `"key"` followed by a colon in `text`, or 0. Keys
+/// with escapes are not found (0): the message still names the key.
+int find_key_line(const std::string& text, const std::string& key, int occurrence) {
+  const std::string quoted = "\"" + key + "\"";
+  size_t at = 0;
+  for (int seen = 0;; at += quoted.size()) {
+    at = text.find(quoted, at);
+    if (at == std::string::npos) return 0;
+    size_t after = at + quoted.size();
+    while (after < text.size() && std::isspace(static_cast<unsigned char>(text[after]))) ++after;
+    if (after < text.size() && text[after] == ':' && ++seen == occurrence) break;
+  }
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + long(at), '\n'));
+}
 
 /// A forward scanner over valid JSON text that counts lines. Never recursive.
 class Scanner {
@@ -193,16 +220,30 @@ JsonDocument::JsonDocument(std::filesystem::path file) : file_(std::move(file)) 
     }
     text_ = std::move(buffer).str();
   }
-  const auto depth_guard = [](int depth, Json::parse_event_t, Json&) {
+  // The keys of each open object, to refuse a key given twice (nlohmann would keep the last
+  // one silently); and how often each key has been seen, to find the line of the repeat.
+  std::vector<std::set<std::string>> open_objects;
+  std::map<std::string, int> key_seen;
+  const auto guard = [&](int depth, Json::parse_event_t event, Json& parsed) {
     if (depth >= kMaxDepth) throw TooDeep{};
+    if (event == Json::parse_event_t::object_start) open_objects.emplace_back();
+    if (event == Json::parse_event_t::object_end && !open_objects.empty()) open_objects.pop_back();
+    if (event == Json::parse_event_t::key && parsed.is_string() && !open_objects.empty()) {
+      const std::string& key = parsed.get_ref<const std::string&>();
+      const int occurrence = ++key_seen[key];
+      if (!open_objects.back().insert(key).second) throw DuplicateKey{key, occurrence};
+    }
     return true;
   };
   try {
-    root_ = Json::parse(text_, depth_guard);
+    root_ = Json::parse(text_, guard);
   } catch (const TooDeep&) {
     throw Error(ErrorKind::kInput,
                 "JSON nests deeper than " + std::to_string(kMaxDepth) + " levels",
                 {file_.string(), find_too_deep_line(text_), {}});
+  } catch (const DuplicateKey& d) {
+    throw Error(ErrorKind::kInput, "key '" + d.key + "' is given twice in one object",
+                {file_.string(), find_key_line(text_, d.key, d.occurrence), {}});
   } catch (const Json::parse_error& e) {
     // e.byte is the 1-based index of the last character read: the one that broke the parse.
     const size_t end = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text_.size());

@@ -7,7 +7,33 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/test_support.h"
+
 namespace prism::test {
+
+/// Limits applied to the prism process (in the child, before exec) by run_prism_limited.
+struct ProcessLimits {
+  /// RLIMIT_AS in bytes, as `ulimit -v` sets it; 0: unchanged.
+  unsigned long long address_space_bytes = 0;
+  /// RLIMIT_FSIZE in bytes; 0: unchanged. SIGXFSZ is ignored, so a write past the limit fails
+  /// with EFBIG as a write to a full filesystem fails with ENOSPC.
+  unsigned long long file_size_bytes = 0;
+  /// When the tests run as root, run prism as user and group 65534 (nobody), so that permission
+  /// bits (a read-only folder, an unreadable file) apply to it. No effect for other users.
+  bool drop_root = false;
+};
+
+/// What run_prism_limited measured besides run_prism's result.
+struct TimedProgramResult {
+  ProgramResult result;
+  double wall_seconds = 0.0;  ///< from fork to the end of the process
+  double cpu_seconds = 0.0;   ///< user + system time of the process
+};
+
+/// run_prism (test_support.h) with `limits` applied to the program, timed. Setting a limit that
+/// fails, or dropping root, makes the child exit with 126 before prism runs.
+TimedProgramResult run_prism_limited(const std::vector<std::string>& args,
+                                     const ProcessLimits& limits, int timeout_seconds = 120);
 
 /// The built prism program running in the background, for tests that signal or kill it while
 /// it works (run_prism() waits for the end). Its stdout and stderr go to `log` (appended; none:

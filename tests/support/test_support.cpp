@@ -1,8 +1,13 @@
 #include "tests/support/test_support.h"
 
+#include "tests/support/child_process.h"
+
 #include <fcntl.h>
+#include <grp.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,8 +58,14 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 }
 
 ProgramResult run_prism(const std::vector<std::string>& args, int timeout_seconds) {
+  return run_prism_limited(args, ProcessLimits{}, timeout_seconds).result;
+}
+
+TimedProgramResult run_prism_limited(const std::vector<std::string>& args,
+                                     const ProcessLimits& limits, int timeout_seconds) {
   int out_pipe[2], err_pipe[2];
   if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) throw std::runtime_error("pipe failed");
+  const auto start = std::chrono::steady_clock::now();
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
@@ -62,6 +73,18 @@ ProgramResult run_prism(const std::vector<std::string>& args, int timeout_second
     dup2(err_pipe[1], STDERR_FILENO);
     close(out_pipe[0]);
     close(err_pipe[0]);
+    if (limits.drop_root && geteuid() == 0) {
+      if (setgroups(0, nullptr) != 0 || setgid(65534) != 0 || setuid(65534) != 0) _exit(126);
+    }
+    if (limits.file_size_bytes > 0) {
+      signal(SIGXFSZ, SIG_IGN);  // kept across exec: writes fail with EFBIG instead
+      const rlimit r{limits.file_size_bytes, limits.file_size_bytes};
+      if (setrlimit(RLIMIT_FSIZE, &r) != 0) _exit(126);
+    }
+    if (limits.address_space_bytes > 0) {
+      const rlimit r{limits.address_space_bytes, limits.address_space_bytes};
+      if (setrlimit(RLIMIT_AS, &r) != 0) _exit(126);
+    }
     std::vector<char*> argv;
     std::string program = PRISM_BINARY;
     argv.push_back(program.data());
@@ -73,7 +96,8 @@ ProgramResult run_prism(const std::vector<std::string>& args, int timeout_second
   }
   close(out_pipe[1]);
   close(err_pipe[1]);
-  ProgramResult result;
+  TimedProgramResult timed;
+  ProgramResult& result = timed.result;
   pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_seconds);
   int open_fds = 2;
@@ -105,7 +129,12 @@ ProgramResult run_prism(const std::vector<std::string>& args, int timeout_second
     if (f.fd >= 0) close(f.fd);
   }
   int status = 0;
-  waitpid(pid, &status, 0);
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  timed.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  timed.cpu_seconds = double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                      1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   if (killed) {
     result.exit_code = -9;
   } else if (WIFEXITED(status)) {
@@ -113,7 +142,7 @@ ProgramResult run_prism(const std::vector<std::string>& args, int timeout_second
   } else {
     result.exit_code = -WTERMSIG(status);
   }
-  return result;
+  return timed;
 }
 
 }  // namespace prism::test
