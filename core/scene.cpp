@@ -1,11 +1,33 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "core/error.h"
 
 namespace prism {
+namespace {
+
+// Widening of the rebuilt point's error bound for the ray tests (see docs/RELIABILITY.md,
+// "Geometric robustness"). The watertight triangle test and Embree's take the vertices relative
+// to the ray origin and shear them: their rounding moves the triangle's plane by up to ~6 u of
+// the origin's distance to the farthest vertex, at any angle, even for a plane through the world
+// origin whose rebuilt point has no error at all. The sphere test squares |o - c| and compares
+// it with r^2, which loses ~4 u r. Both are taken twice over.
+const float kTriangleTestGamma = rounding_gamma(12);
+const float kSphereTestGamma = rounding_gamma(8);
+// The ends of a shadow ray: the target is rebuilt from a light point, a distance and a
+// direction, with about 9 u of the largest coordinate of either end.
+const float kTargetGamma = rounding_gamma(16);
+
+/// The error of a float point rounded once from a double computation on inputs whose
+/// magnitudes sum to `inputs` per component: half an ulp of the result plus the double's error.
+Vec3 rebuilt_point_error(const Vec3& p, const Vec3& inputs) {
+  return rounding_gamma(1) * glm::abs(p) + 0x1p-48f * inputs;
+}
+
+}  // namespace
 
 SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
   SurfaceInteraction si;
@@ -17,9 +39,17 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
     const float phi = hit.u * 2.0f * kPi;
     const float theta = hit.v * kPi;
     const Vec3 n{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
-    si.position = s.center + s.radius * n;
-    si.geometric_normal = n;
-    si.shading_normal = n;
+    // Reprojected onto the sphere in double, so the float point is one rounding off it.
+    const DVec3 local = DVec3(n) * (double(s.radius) / glm::length(DVec3(n)));
+    si.position = Vec3(DVec3(s.center) + local);
+    si.position_error = rebuilt_point_error(si.position, glm::abs(s.center) + Vec3(s.radius)) +
+                        Vec3(kSphereTestGamma * s.radius);
+    // The sphere's normal at the float point: far from the world origin the point's rounding
+    // turns it visibly from n, and sides must be judged where the point is.
+    const DVec3 radial = DVec3(si.position) - DVec3(s.center);
+    const double radial_length = glm::length(radial);
+    si.geometric_normal = radial_length > 0.0 ? Vec3(radial / radial_length) : n;
+    si.shading_normal = si.geometric_normal;
     si.uv = Vec2(hit.u, hit.v);
     si.material_id = s.material_id;
     return si;
@@ -30,7 +60,14 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
   const Vec3& p1 = mesh.positions[tri.y];
   const Vec3& p2 = mesh.positions[tri.z];
   const float w = 1.0f - hit.u - hit.v;
-  si.position = w * p0 + hit.u * p1 + hit.v * p2;
+  // In double, as p0 + u (p1 - p0) + v (p2 - p0): the float point is one rounding off the
+  // triangle's plane (a float 1 - u - v would move it off by a rounding of |p0| near edge p1 p2).
+  const DVec3 d0(p0);
+  si.position = Vec3(d0 + double(hit.u) * (DVec3(p1) - d0) + double(hit.v) * (DVec3(p2) - d0));
+  const Vec3 reach = glm::max(glm::abs(p0 - si.position),
+                              glm::max(glm::abs(p1 - si.position), glm::abs(p2 - si.position)));
+  si.position_error = rebuilt_point_error(si.position, glm::abs(p0) + glm::abs(p1) + glm::abs(p2)) +
+                      Vec3(kTriangleTestGamma * max_component(reach));
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float ng_length = glm::length(ng);
   ng = ng_length > 0.0f ? ng / ng_length : -glm::normalize(ray.direction);
@@ -80,13 +117,46 @@ void Scene::validate() const {
   }
 }
 
-Vec3 offset_ray_origin(const Vec3& p, const Vec3& geometric_normal, const Vec3& toward) {
-  // Offset proportional to the largest coordinate magnitude: a few ulps of float error in the
-  // rebuilt hit point, with margin (pbrt-v4's error-bound idea, with a conservative bound).
-  const float magnitude = max_component(glm::abs(p));
-  const float offset = 1e-4f * std::max(1.0f, magnitude);
+Vec3 offset_ray_origin(const Vec3& p, const Vec3& error, const Vec3& geometric_normal,
+                       const Vec3& toward) {
+  const float distance = glm::dot(glm::abs(geometric_normal), error);
   const Vec3 n = glm::dot(geometric_normal, toward) >= 0.0f ? geometric_normal : -geometric_normal;
-  return p + offset * n;
+  Vec3 origin = p + distance * n;
+  // p + distance * n may round back toward p by half an ulp: one more ulp outward makes the
+  // move at least `distance` along every axis the normal has a component on.
+  for (int k = 0; k < 3; ++k) {
+    if (n[k] > 0.0f) {
+      origin[k] = std::nextafter(origin[k], kInfinity);
+    } else if (n[k] < 0.0f) {
+      origin[k] = std::nextafter(origin[k], -kInfinity);
+    }
+  }
+  return origin;
+}
+
+Ray spawn_ray(const SurfaceInteraction& si, const Vec3& direction) {
+  Ray r;
+  r.origin = offset_ray_origin(si.position, si.position_error, si.geometric_normal, direction);
+  r.direction = direction;
+  r.tmin = 0.0f;
+  r.tmax = kInfinity;
+  return r;
+}
+
+Ray spawn_ray_to(const SurfaceInteraction& si, const Vec3& target) {
+  Ray r;
+  r.origin =
+      offset_ray_origin(si.position, si.position_error, si.geometric_normal, target - si.position);
+  r.direction = target - r.origin;
+  r.tmin = 0.0f;
+  // A target computed from a point far from the world origin is only known to a few ulps of its
+  // coordinates: stop short of it by that too, or it may lie just behind its emitter.
+  const float rounding =
+      kTargetGamma * (max_component(glm::abs(target)) + max_component(glm::abs(r.origin)));
+  const float length = glm::length(r.direction);
+  const float short_of = std::max(kShadowEpsilon, rounding / length);
+  r.tmax = short_of < 1.0f ? 1.0f - short_of : 0.0f;
+  return r;
 }
 
 }  // namespace prism

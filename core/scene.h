@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,7 +28,11 @@ struct SceneRenderSettings {
 
 /// Local geometry at a hit, computed the same way for every accelerator.
 struct SurfaceInteraction {
-  Vec3 position;          ///< rebuilt from (prim, u, v), not from origin + t * dir
+  Vec3 position;  ///< rebuilt from (prim, u, v), not from origin + t * dir
+  /// Per component, a conservative bound on how far the surface, as the ray tests see it from a
+  /// ray starting next to `position`, may be from `position`: the rounding of the rebuilt point
+  /// plus the tests' own rounding (offset_ray_origin() clears it).
+  Vec3 position_error{0.0f};
   Vec3 geometric_normal;  ///< unit; in the hemisphere of the shading normal
   Vec3 shading_normal;    ///< unit; interpolated per-corner normal, else the geometric one
   Vec2 uv;
@@ -76,9 +81,33 @@ struct Scene {
   void validate() const;
 };
 
-/// A point offset off a surface along its geometric normal by an amount that scales with the
-/// point's magnitude, so secondary rays from it do not re-hit the same surface. `toward` is the
-/// side (direction of the new ray) to move to. Shared by all backends.
-Vec3 offset_ray_origin(const Vec3& p, const Vec3& geometric_normal, const Vec3& toward);
+/// gamma(n) = n u / (1 - n u) with u = 2^-24: bounds the relative error of n float operations
+/// (Higham; pbrt-v4's error analysis).
+constexpr float rounding_gamma(int n) {
+  constexpr float u = 0.5f * std::numeric_limits<float>::epsilon();
+  return (float(n) * u) / (1.0f - float(n) * u);
+}
+
+/// Shadow rays stop this fraction of their length short of the point they aim at (at least;
+/// see spawn_ray_to()), so they do not hit the emitter that point lies on.
+inline constexpr float kShadowEpsilon = 1e-4f;
+
+/// The origin of a ray leaving the surface point `p` toward `toward`'s side of the surface:
+/// p moved along the geometric normal by dot(|n|, error) (`error`: the surface point's
+/// SurfaceInteraction::position_error), to `toward`'s side, each moved coordinate then rounded
+/// one more float away from p. Nothing but the coordinates' own precision sets the distance, so
+/// it holds at every scale and distance from the world origin. Shared by all backends.
+Vec3 offset_ray_origin(const Vec3& p, const Vec3& error, const Vec3& geometric_normal,
+                       const Vec3& toward);
+
+/// The ray leaving `si` along `direction` (not necessarily unit): from offset_ray_origin(),
+/// t in [0, infinity).
+Ray spawn_ray(const SurfaceInteraction& si, const Vec3& direction);
+
+/// The ray from `si` to `target` (a light point): from offset_ray_origin() toward the target,
+/// direction target - origin, ending short of the target by kShadowEpsilon of the length or,
+/// when larger, by the rounding error of the coordinates at the ends, so a target rebuilt on an
+/// emitter far from the world origin does not land behind it.
+Ray spawn_ray_to(const SurfaceInteraction& si, const Vec3& target);
 
 }  // namespace prism

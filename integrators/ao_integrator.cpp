@@ -34,9 +34,7 @@ Rgb AoEstimator::li(const Ray& ray, Sampler& sampler, AovSample& aovs) const {
   for (int i = 0; i < samples_; ++i) {
     const Vec3 wi = glm::normalize(frame.to_world(square_to_cosine_hemisphere(sampler.get_2d())));
     if (glm::dot(wi, si.geometric_normal) * glm::dot(wo, si.geometric_normal) <= 0.0f) continue;
-    Ray r;
-    r.origin = offset_ray_origin(si.position, si.geometric_normal, wi);
-    r.direction = wi;
+    Ray r = spawn_ray(si, wi);
     r.tmax = reach_;
     if (!context_.accel.occluded(r)) ++open;
   }

@@ -6,12 +6,6 @@
 #include "integrators/sampling/warp.h"
 
 namespace prism {
-namespace {
-
-/// Shadow rays stop this fraction short of the light point, so they do not hit the emitter.
-constexpr float kShadowEpsilon = 1e-4f;
-
-}  // namespace
 
 LightTransportSettings::LightTransportSettings(const std::string& name, const ParamSet& params)
     : light_samples(
@@ -90,25 +84,13 @@ std::optional<BsdfSample> ShadingPoint::sample(float u_lobe, Vec2 u) const {
   return s;
 }
 
-Ray ShadingPoint::spawn(const Vec3& wi_world) const {
-  Ray r;
-  r.origin = offset_ray_origin(si.position, si.geometric_normal, wi_world);
-  r.direction = wi_world;
-  r.tmin = 0.0f;
-  r.tmax = kInfinity;
-  return r;
-}
+Ray ShadingPoint::spawn(const Vec3& wi_world) const { return spawn_ray(si, wi_world); }
 
 bool ShadingPoint::unoccluded(const Accelerator& accel, const Vec3& wi_world,
                               float distance) const {
-  Ray r = spawn(wi_world);
-  if (std::isfinite(distance)) {
-    // Aim at the light point itself from the offset origin and stop just short of it.
-    const Vec3 target = si.position + distance * wi_world;
-    r.direction = target - r.origin;
-    r.tmax = 1.0f - kShadowEpsilon;
-  }
-  return !accel.occluded(r);
+  if (!std::isfinite(distance)) return !accel.occluded(spawn_ray(si, wi_world));
+  // Aim at the light point itself from the offset origin and stop just short of it.
+  return !accel.occluded(spawn_ray_to(si, si.position + distance * wi_world));
 }
 
 Rgb emitted_radiance(const SurfaceInteraction& si, const Ray& ray, const ShadingContext& shading) {

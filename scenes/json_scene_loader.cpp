@@ -44,6 +44,8 @@ Camera read_camera(const JsonNode& node, const SceneRenderSettings& settings) {
   node.check_keys(
       {"position", "target", "look_at", "up", "fov", "fov_axis", "lens_radius", "focal_distance"});
   Camera camera;
+  // Rays start at the eye: any fixed near distance would clip a scene small enough.
+  camera.znear = 0.0f;
   camera.position = node.child("position").vec3();
   if (node.has("target") && node.has("look_at")) {
     node.fail("give either 'target' or 'look_at', not both");

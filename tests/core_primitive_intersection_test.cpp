@@ -1,6 +1,6 @@
 // core/primitive_intersection.h: the watertight ray/triangle test and the ray/sphere test
-// shared by the backends, against hand computations; and offset_ray_origin (core/scene.h),
-// which keeps secondary rays off the surface they leave.
+// shared by the backends, against hand computations. offset_ray_origin (core/scene.h) is tested
+// in core_spawn_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "core/primitive_intersection.h"
-#include "core/scene.h"
 
 namespace prism {
 namespace {
@@ -421,60 +420,6 @@ TEST(CorePrimitiveIntersection, SmallDistantSphereIsHitAccurately) {
     EXPECT_LE(hit->t, 1e4f);
   }
   EXPECT_FALSE(intersect_sphere(make_ray({0.0101f, 0.0f, 0.0f}, {0, 0, 1}), centre, radius));
-}
-
-TEST(CorePrimitiveIntersection, OffsetRayOriginMovesToTheRequestedSide) {
-  const Vec3 p(1.0f, 2.0f, 3.0f), n(0.0f, 0.0f, 1.0f);
-  for (const Vec3 toward : {Vec3(0.3f, 0.0f, 1.0f), Vec3(0.0f, 0.0f, -1.0f), Vec3(1, 1, -0.01f)}) {
-    const Vec3 moved = offset_ray_origin(p, n, toward);
-    const Vec3 step = moved - p;
-    // Along the normal only, to the side of `toward`, whichever way the normal faces.
-    EXPECT_EQ(step.x, 0.0f);
-    EXPECT_EQ(step.y, 0.0f);
-    EXPECT_GT(step.z * toward.z, 0.0f);
-    EXPECT_EQ(offset_ray_origin(p, -n, toward), moved);
-    EXPECT_LT(glm::length(step), 1e-2f);
-  }
-  // The offset grows with the point's magnitude.
-  const float small = glm::length(offset_ray_origin(Vec3(0.5f), n, n) - Vec3(0.5f));
-  const Vec3 far(-3000.0f, 10.0f, 20.0f);
-  const float large = glm::length(offset_ray_origin(far, n, n) - far);
-  EXPECT_GT(small, 0.0f);
-  EXPECT_GT(large, 100.0f * small);
-}
-
-TEST(CorePrimitiveIntersection, OffsetOriginsDoNotReHitTheirTriangle) {
-  // Hit points on large, tilted triangles far from the origin; secondary rays leave to both
-  // sides from the offset point without finding the triangle again.
-  std::mt19937 rng(17);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  int self_hits = 0, tested = 0;
-  for (const float extent : {1.0f, 100.0f, 5000.0f}) {
-    for (int i = 0; i < 300; ++i) {
-      const Vec3 shift = random_point(rng, extent);
-      const Vec3 p0 = shift + random_point(rng, 2.0f), p1 = shift + random_point(rng, 2.0f),
-                 p2 = shift + random_point(rng, 2.0f);
-      const Vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-      if (!is_finite(ng)) continue;
-      const Vec3 target = barycentric_point(p0, p1, p2, 0.3f, 0.3f);
-      const Vec3 origin = target + 3.0f * glm::normalize(random_point(rng, 1.0f) + 2.0f * ng);
-      const Ray primary = make_ray(origin, target - origin);
-      const auto hit = triangle_hit(primary, p0, p1, p2);
-      if (!hit) continue;
-      ++tested;
-      const Vec3 p = primary.at(hit->t);
-      // Reflected-like (back to the origin's side) and transmitted (through to the other side),
-      // both close to the surface.
-      Vec3 reflect = glm::normalize(random_point(rng, 1.0f));
-      if (glm::dot(reflect, ng) * glm::dot(origin - p, ng) < 0.0f) reflect = -reflect;
-      for (const Vec3 dir : {reflect, -reflect}) {
-        const Ray secondary = make_ray(offset_ray_origin(p, ng, dir), dir);
-        self_hits += triangle_hit(secondary, p0, p1, p2).has_value();
-      }
-    }
-  }
-  EXPECT_GT(tested, 800);
-  EXPECT_EQ(self_hits, 0);
 }
 
 }  // namespace

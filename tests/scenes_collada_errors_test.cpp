@@ -111,6 +111,56 @@ TEST(ScenesColladaErrors, NonNumericAndNonFiniteNumbers) {
   expect_input_error(replaced(kBase, "0.8 0.1 0.1 1", "0.8 -0.1 0.1 1"), {"<color>", ">= 0"});
 }
 
+TEST(ScenesColladaErrors, TransformNumbersBeyondFloatRange) {
+  // Transforms are read in double precision, but every number must fit the floats the scene is
+  // stored in: 1e39 is an error wherever it sits, even in the projective row (where it would
+  // shrink the geometry to nothing, not overflow it) or above a light.
+  const std::vector<std::string> matrices = {
+      "<matrix>1e39 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1</matrix>",
+      "<matrix>1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1e39</matrix>",
+      "<matrix>1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 -1e39</matrix>",
+  };
+  for (const std::string& matrix : matrices) {
+    SCOPED_TRACE(matrix);
+    const std::string text = replaced(kBase, "<node id=\"n\">", "<node id=\"n\">\n" + matrix);
+    EXPECT_EQ(expect_input_error(text, {"<matrix>", "1e39'", "too large for single precision"}),
+              line_of(text, matrix));
+  }
+  for (const std::string bad : {"inf", "nan", "1e999"}) {
+    SCOPED_TRACE(bad);
+    const std::string matrix = "<matrix>1 0 0 0 0 1 0 0 0 0 1 " + bad + " 0 0 0 1</matrix>";
+    const std::string text = replaced(kBase, "<node id=\"n\">", "<node id=\"n\">\n" + matrix);
+    EXPECT_EQ(expect_input_error(text, {"<matrix>", "'" + bad + "'"}), line_of(text, matrix));
+  }
+  expect_input_error(
+      replaced(kBase, "<translate>0 0 2</translate>", "<translate>0 0 1e39</translate>"),
+      {"<translate>", "'1e39'", "too large"});
+  const std::string scale =
+      replaced(kBase, "<translate>0 0 2</translate>", "<scale>1 1 1e39</scale>");
+  EXPECT_EQ(expect_input_error(scale, {"<scale>", "'1e39'"}), line_of(scale, "<scale>"));
+}
+
+TEST(ScenesColladaErrors, NonFiniteLightColour) {
+  const auto with_light = [](const std::string& colour) {
+    return replaced(
+        replaced(kBase, "<library_visual_scenes>",
+                 "<library_lights>\n<light id=\"lamp\"><technique_common><point>\n<color>" +
+                     colour +
+                     "</color></point></technique_common></light>\n</library_lights>\n"
+                     "<library_visual_scenes>"),
+        "<node id=\"s\">",
+        "<node id=\"l\"><translate>0 0 5</translate><instance_light url=\"#lamp\"/></node>\n"
+        "<node id=\"s\">");
+  };
+  for (const std::string bad : {"inf", "-inf", "nan", "Infinity", "1e39"}) {
+    SCOPED_TRACE(bad);
+    const std::string text = with_light("1 " + bad + " 1");
+    EXPECT_EQ(expect_input_error(text, {"<color>", "'" + bad + "'"}), line_of(text, "<color>1"));
+  }
+  // A finite colour below float's limit loads.
+  EXPECT_NO_THROW(test::collada::load_text(with_light("1 2 3")));
+}
+
 TEST(ScenesColladaErrors, ShortMatrixAboveGeometry) {
   // The homework reads the missing numbers as 0 and divides vertices by the w that leaves 0:
   // the geometry is lost, so prism refuses (cameras and lights read the top rows only, and

@@ -446,6 +446,23 @@ TEST(ScenesCollada, SyntheticCameraUsesYfovAndAspect) {
 // The up axis is a global rotation into prism's Z-up world: reading the same numbers as Y_UP
 // or X_UP gives the Z_UP scene turned so the file's up axis becomes +Z, camera included (the
 // framing's axis-aligned box turns exactly with it).
+TEST(ScenesCollada, HomeworkFramingNearPlaneFollowsTheSceneSize) {
+  // Without a <znear>, the framed camera's near plane is a thousandth of its distance at most:
+  // the same scene scaled by 1e-6 is framed the same way, not clipped by an absolute 0.01.
+  for (const double scale : {1.0, 1e-6}) {
+    SCOPED_TRACE(scale);
+    const std::string s = std::to_string(scale);
+    const std::string text =
+        replaced(replaced(kBase, "<node id=\"n\">",
+                          "<node id=\"n\"><scale>" + s + " " + s + " " + s + "</scale>"),
+                 "<node id=\"s\">", "<node id=\"s\"><scale>" + s + " " + s + " " + s + "</scale>");
+    const Scene scene = load_text(text);
+    const float distance = glm::length(scene.camera.position - scene.camera.target);
+    EXPECT_GT(scene.camera.znear, 0.0f);
+    EXPECT_LE(scene.camera.znear, 1e-3f * distance * 1.0001f);
+  }
+}
+
 TEST(ScenesCollada, UpAxisIsAGlobalRotation) {
   const std::string y_up = features_document();
   const Scene as_z = load_text(replaced(y_up, "Y_UP", "Z_UP"));

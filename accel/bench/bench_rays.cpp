@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -48,8 +49,18 @@ Vec3 cosine_hemisphere(const Vec3& n, float u1, float u2) {
 
 struct SurfacePoint {
   Vec3 position;
+  Vec3 error;      ///< SurfaceInteraction::position_error
   Vec3 normal;     ///< geometric, facing the incoming ray
   uint32_t pixel;  ///< of the camera ray this point descends from
+
+  /// What spawn_ray() and spawn_ray_to() read of the hit.
+  SurfaceInteraction interaction() const {
+    SurfaceInteraction si;
+    si.position = position;
+    si.position_error = error;
+    si.geometric_normal = normal;
+    return si;
+  }
 };
 
 // Hit points of `rays` (in ray order, misses dropped), traced in parallel.
@@ -65,7 +76,7 @@ std::vector<SurfacePoint> trace_points(const Scene& scene, const Accelerator& tr
                         const SurfaceInteraction si = scene.surface_at(rays[i], *hit);
                         Vec3 n = si.geometric_normal;
                         if (glm::dot(n, rays[i].direction) > 0.0f) n = -n;
-                        points[i] = SurfacePoint{si.position, n, pixels[i]};
+                        points[i] = SurfacePoint{si.position, si.position_error, n, pixels[i]};
                       }
                     });
   std::vector<SurfacePoint> out;
@@ -82,8 +93,7 @@ BenchRaySet bounce(const std::string& name, const std::vector<SurfacePoint>& poi
                   std::vector<uint32_t>(points.size())};
   for (size_t i = 0; i < points.size(); ++i) {
     const Vec3 d = cosine_hemisphere(points[i].normal, rng.get(i, 0), rng.get(i, 1));
-    set.rays[i] =
-        Ray{offset_ray_origin(points[i].position, points[i].normal, d), 0.0f, d, kInfinity};
+    set.rays[i] = spawn_ray(points[i].interaction(), d);
     set.pixels[i] = points[i].pixel;
   }
   return set;
@@ -108,10 +118,12 @@ Ray shadow_ray(const SurfacePoint& p, const Light* light, const Bounds3& bounds,
   } else {
     target = light->position;
   }
-  if (distant) return Ray{offset_ray_origin(p.position, p.normal, dir), 0.0f, dir, kInfinity};
-  const Vec3 origin = offset_ray_origin(p.position, p.normal, target - p.position);
-  // Stop just short of the light so that an emitter's own geometry does not count.
-  return Ray{origin, 0.0f, target - origin, 1.0f - 1e-3f};
+  if (distant) return spawn_ray(p.interaction(), dir);
+  // As the integrators spawn it (error-bounded at both ends), and at least 1e-3 of the way short
+  // of the light so that an emitter's own geometry does not count.
+  Ray r = spawn_ray_to(p.interaction(), target);
+  r.tmax = std::min(r.tmax, 1.0f - 1e-3f);
+  return r;
 }
 
 constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'R', 'Y', '2'};

@@ -98,6 +98,9 @@ Camera frame_homework(const CameraOptics& optics, const Bounds3& bounds, DVec3 c
   camera.hfov_deg = static_cast<float>(optics.hfov_deg);
   camera.vfov_deg = static_cast<float>(optics.vfov_deg);
   apply_clip(optics, camera);
+  // Without the file's near plane, one relative to the framing distance: the default 0.01 would
+  // clip a whole scene smaller than that (docs/RELIABILITY.md, "Geometric robustness").
+  if (!optics.znear) camera.znear = std::min(camera.znear, static_cast<float>(1e-3 * r));
   camera.zfar = std::max(camera.zfar, static_cast<float>(r + diagonal));
   return camera;
 }

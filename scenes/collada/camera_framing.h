@@ -42,7 +42,8 @@ inline constexpr DVec3 kDefaultViewDirection{0.0, -1.0, 0.0};
 /// COLLADA +Z, the world up, see transforms.h; model files pass their own). A direction
 /// (anti)parallel to up is tilted 0.01 rad toward -Y (toward +Z when up is along Y), as the
 /// homework's viewer clamps its polar angle away from the pole. zfar grows to r + diagonal if
-/// needed, so the framed scene is never clipped.
+/// needed, so the framed scene is never clipped; without the file's znear, znear is at most
+/// 1e-3 r, so a scene of any size is not clipped either.
 Camera frame_homework(const CameraOptics& optics, const Bounds3& bounds, DVec3 c,
                       Vec3 up = kWorldUp);
 

@@ -223,7 +223,8 @@ std::vector<T> Document::parse_numbers(pugi::xml_node element, bool integers) co
       if (ec == std::errc::result_out_of_range) token_error(p, token_end, "is out of range");
       if (ec != std::errc() || ptr != token_end) token_error(p, token_end, "is not a number");
       if (!std::isfinite(value)) token_error(p, token_end, "is not a finite number");
-      if (std::is_same_v<T, float> && std::abs(value) > FLT_MAX) {
+      // Doubles too (transforms): a number beyond float range has no place in a float scene.
+      if (std::abs(value) > FLT_MAX) {
         token_error(p, token_end, "is too large for single precision");
       }
       out.push_back(static_cast<T>(value));

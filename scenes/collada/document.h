@@ -59,7 +59,9 @@ class Document {
   /// the element, the offending token and its line otherwise. Memory is proportional to the
   /// text actually present, never to a count attribute.
   std::vector<float> floats(pugi::xml_node element) const;
-  /// As floats() but in double precision (transforms).
+  /// As floats() but kept in double precision (transforms); each number is still within float
+  /// range, since whatever it transforms is stored in floats (a <matrix> holding 1e39 is an
+  /// error even where it would not overflow a vertex).
   std::vector<double> doubles(pugi::xml_node element) const;
   /// Every non-negative integer below 2^32 in the text of `element` (<p>, <vcount>).
   std::vector<uint32_t> indices(pugi::xml_node element) const;
