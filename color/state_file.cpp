@@ -121,7 +121,7 @@ StateFileContents read_state_file(const fs::path& path) {
   const PixelRect window{{spec.x, spec.y}, {spec.x + spec.width, spec.y + spec.height}};
   if (spec.full_x != 0 || spec.full_y != 0 || spec.full_width < 1 || spec.full_height < 1 ||
       spec.full_width > kMaxFilmSide || spec.full_height > kMaxFilmSide || window.empty() ||
-      !PixelRect({0, 0}, {spec.full_width, spec.full_height}).contains(window) || spec.depth != 1) {
+      !PixelRect{{0, 0}, {spec.full_width, spec.full_height}}.contains(window) || spec.depth != 1) {
     throw bad_file(path, fmt::format("state window {}x{} at ({}, {}) is not inside a display "
                                      "window of at most {} pixels a side",
                                      spec.width, spec.height, spec.x, spec.y, kMaxFilmSide));

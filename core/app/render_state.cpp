@@ -238,7 +238,7 @@ RenderStateRecord render_state_from_text(const std::string& text, const std::str
   if (r.width < 1 || r.height < 1 || r.width > kMaxFilmSide || r.height > kMaxFilmSide) {
     bad(fmt::format("resolution {} x {} is out of range", r.width, r.height));
   }
-  if (r.window.empty() || !PixelRect({0, 0}, {r.width, r.height}).contains(r.window)) {
+  if (r.window.empty() || !PixelRect{{0, 0}, {r.width, r.height}}.contains(r.window)) {
     bad("the window is not inside the image");
   }
   if (r.spp < 1 || r.samples.last <= r.samples.first || r.samples.last > uint32_t(r.spp)) {
