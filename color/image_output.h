@@ -66,7 +66,15 @@ struct ImageFileContents {
   int channel(const std::string& name) const;
 };
 
-/// Reads an image file (for tests and comparisons). Throws Error(kInput) naming the path.
+/// Reads an image file (for tests and comparisons). Throws Error(kInput) naming the path; an
+/// OpenEXR file first passes check_exr_header().
 ImageFileContents read_image_file(const std::filesystem::path& path);
+
+/// When `path` starts with the OpenEXR magic number: checks that its headers (every part's) are
+/// whole, each attribute's name and type ending within 256 bytes and its value within the file,
+/// before OpenEXR allocates what the header claims (OpenEXR 3.1 sizes a string attribute by
+/// its stated length, up to 2 GB, whatever the file holds). Throws Error(kInput) naming the path
+/// and the attribute. Other files pass unread.
+void check_exr_header(const std::filesystem::path& path);
 
 }  // namespace prism
