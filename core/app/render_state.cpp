@@ -220,6 +220,7 @@ RenderStateRecord render_state_from_text(const std::string& text, const std::str
   RenderStateRecord r;
   f.object("identity");  // present and an object
   r.identity = j.at("identity");
+  f.object("options");  // present (options_from_json checks the rest)
   r.options = options_from_json(j.at("options"), source);
   const auto w = f.get<std::array<int, 4>>("window");
   r.window = PixelRect{{w[0], w[1]}, {w[2], w[3]}};
