@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "color/image_output.h"
 #include "core/error.h"
@@ -26,6 +28,39 @@ int ImageFileContents::channel(const std::string& name) const {
   const auto it = std::find(names.begin(), names.end(), name);
   return it == names.end() ? -1 : int(it - names.begin());
 }
+
+namespace {
+/// The largest side of an EXR prism reads: far above any film (kMaxFilmSide) or environment map.
+constexpr int64_t kMaxExrSide = int64_t(1) << 20;
+
+/// The sizes of OpenEXR's fixed-size attribute types.
+const std::map<std::string, int32_t> kFixedSizes = {
+    {"box2i", 16},
+    {"box2f", 16},
+    {"chromaticities", 32},
+    {"compression", 1},
+    {"deepImageState", 1},
+    {"double", 8},
+    {"envmap", 1},
+    {"float", 4},
+    {"int", 4},
+    {"keycode", 28},
+    {"lineOrder", 1},
+    {"m33d", 72},
+    {"m33f", 36},
+    {"m44d", 128},
+    {"m44f", 64},
+    {"rational", 8},
+    {"tiledesc", 9},
+    {"timecode", 8},
+    {"v2d", 16},
+    {"v2f", 8},
+    {"v2i", 8},
+    {"v3d", 24},
+    {"v3f", 12},
+    {"v3i", 12},
+};
+}  // namespace
 
 void check_exr_header(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -53,7 +88,10 @@ void check_exr_header(const std::filesystem::path& path) {
   };
   for (int part = 0;; ++part) {
     int attributes = 0;
+    std::vector<std::string> required = {"channels", "compression", "dataWindow", "displayWindow",
+                                         "lineOrder"};
     for (std::string name; !(name = read_name("name")).empty(); ++attributes) {
+      std::erase(required, name);
       const std::string type = read_name("type");
       unsigned char bytes[4];
       if (!in.read(reinterpret_cast<char*>(bytes), 4)) {
@@ -66,7 +104,49 @@ void check_exr_header(const std::filesystem::path& path) {
         throw bad("attribute '" + name + "' (" + type + ") claims " + std::to_string(size) +
                   " bytes, the file has " + std::to_string(left) + " left");
       }
-      in.seekg(size, std::ios::cur);
+      // OpenEXR reads a fixed-size type's own size whatever the header says: a different size
+      // would put it elsewhere in the file than this walk.
+      const auto fixed = kFixedSizes.find(type);
+      if (fixed != kFixedSizes.end() && size != fixed->second) {
+        throw bad("attribute '" + name + "' (" + type + ") has " + std::to_string(size) +
+                  " bytes, not " + std::to_string(fixed->second));
+      }
+      std::string value(size_t(size), '\0');
+      in.read(value.data(), size);
+      const auto u32 = [&](size_t at) {
+        return uint32_t(uint8_t(value[at])) | uint32_t(uint8_t(value[at + 1])) << 8 |
+               uint32_t(uint8_t(value[at + 2])) << 16 | uint32_t(uint8_t(value[at + 3])) << 24;
+      };
+      if (type == "box2i" && (name == "dataWindow" || name == "displayWindow")) {
+        // OpenEXR sizes its tables by the windows before it reads a pixel.
+        const int64_t width = int64_t(int32_t(u32(8))) - int32_t(u32(0)) + 1;
+        const int64_t height = int64_t(int32_t(u32(12))) - int32_t(u32(4)) + 1;
+        if (width < 1 || height < 1 || width > kMaxExrSide || height > kMaxExrSide) {
+          throw bad(name + " of " + std::to_string(width) + " x " + std::to_string(height) +
+                    " pixels (at most " + std::to_string(kMaxExrSide) + " a side)");
+        }
+      } else if (type == "chlist") {
+        // Channels: a name, 16 bytes (type, linear, reserved, sampling), ...; an empty name last.
+        size_t at = 0;
+        for (;;) {
+          const size_t end = value.find('\0', at);
+          if (end == std::string::npos) throw bad("attribute '" + name + "' (chlist) is cut");
+          if (end == at) break;
+          at = end + 1 + 16;
+        }
+        if (at + 1 != value.size()) {
+          throw bad("attribute '" + name + "' (chlist) does not fill its " + std::to_string(size) +
+                    " bytes");
+        }
+      } else if (type == "preview") {
+        // Width, height, then 4 bytes a pixel, allocated from the two numbers.
+        if (size < 8 || 8 + 4 * uint64_t(u32(0)) * u32(4) != uint64_t(size)) {
+          throw bad("attribute '" + name + "' (preview) does not hold its pixels");
+        }
+      }
+    }
+    if (attributes > 0 && !required.empty()) {
+      throw bad("part " + std::to_string(part) + " has no '" + required.front() + "' attribute");
     }
     // A single-part file has one header; a multipart file's list ends with an empty header.
     if (!multipart || attributes == 0) return;
