@@ -33,6 +33,10 @@ namespace {
 /// The largest side of an EXR prism reads: far above any film (kMaxFilmSide) or environment map.
 constexpr int64_t kMaxExrSide = int64_t(1) << 20;
 
+/// The most values (pixels x channels) read_image_file() reads: 1 GiB of floats, e.g. an
+/// 8192 x 8192 RGBA environment map.
+constexpr int64_t kMaxImageValues = int64_t(1) << 28;
+
 /// The sizes of OpenEXR's fixed-size attribute types.
 const std::map<std::string, int32_t> kFixedSizes = {
     {"box2i", 16},
@@ -161,6 +165,16 @@ ImageFileContents read_image_file(const std::filesystem::path& path) {
                 ErrorLocation{path.string(), 0, {}});
   }
   const OIIO::ImageSpec& spec = in->spec();
+  // The header's size, checked before it is allocated (a PFM header is a line of text).
+  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1 || spec.depth != 1 ||
+      int64_t(spec.width) * spec.height * spec.nchannels > kMaxImageValues) {
+    throw Error(ErrorKind::kInput,
+                "the image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                    " pixels of " + std::to_string(spec.nchannels) +
+                    " channels: prism reads from 1 x 1 x 1 to " + std::to_string(kMaxImageValues) +
+                    " values",
+                ErrorLocation{path.string(), 0, {}});
+  }
   ImageFileContents contents;
   contents.format = in->format_name();
   contents.image.width = spec.width;
