@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <memory>
 
 #include "color/image_output.h"
@@ -80,6 +81,10 @@ namespace {
 std::unique_ptr<OIIO::ImageInput> open_state_file(const fs::path& path, ImageMetadata& attributes) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw bad_file(path, "not a file");
+  // Not an EXR: said here, before OpenImageIO tries every format it knows on it.
+  char magic[4] = {};
+  std::ifstream(path, std::ios::binary).read(magic, 4);
+  if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0) throw bad_file(path, "not an OpenEXR file");
   try {
     check_exr_header(path);
   } catch (const Error& e) {
