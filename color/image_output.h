@@ -67,14 +67,23 @@ struct ImageFileContents {
   int channel(const std::string& name) const;
 };
 
-/// Most values (width x height x channels) read_image_file reads from one file: 2^30 floats,
-/// 4 GiB, e.g. a 16384 x 16384 RGBA image.
-inline constexpr uint64_t kMaxImageFileValues = uint64_t(1) << 30;
+/// Most values (width x height x channels) read_image_file reads from one file: 2^28 floats,
+/// 1 GiB, e.g. an 8192 x 8192 RGBA image.
+inline constexpr uint64_t kMaxImageFileValues = uint64_t(1) << 28;
 
-/// Reads an image file (environment maps, `prism convert`, state files, tests). Throws
+/// Reads an image file (environment maps, `prism convert`, tests). Throws
 /// Error(kInput) naming the path when the file cannot be read or its header declares no pixels
 /// or more than kMaxImageFileValues values; Error(kResource) when the pixels do not fit in
-/// memory.
+/// memory. An OpenEXR file first passes check_exr_header().
 ImageFileContents read_image_file(const std::filesystem::path& path);
+
+/// When `path` starts with the OpenEXR magic number: checks that its headers (every part's) are
+/// whole, each attribute's name and type ending within 256 bytes and its value within the file
+/// and of its type's size (channel lists and previews parsed), that each part has the attributes
+/// every EXR has (channels, compression, dataWindow, displayWindow, lineOrder) and windows of at
+/// most 2^20 pixels a side, before OpenEXR allocates what the header claims (OpenEXR 3.1 sizes a
+/// string attribute by its stated length, up to 2 GB, whatever the file holds). Throws
+/// Error(kInput) naming the path and the attribute. Other files pass unread.
+void check_exr_header(const std::filesystem::path& path);
 
 }  // namespace prism

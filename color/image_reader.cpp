@@ -6,8 +6,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <map>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "color/image_output.h"
 #include "core/error.h"
@@ -27,7 +30,132 @@ int ImageFileContents::channel(const std::string& name) const {
   return it == names.end() ? -1 : int(it - names.begin());
 }
 
+namespace {
+/// The largest side of an EXR prism reads: far above any film (kMaxFilmSide) or environment map.
+constexpr int64_t kMaxExrSide = int64_t(1) << 20;
+
+/// The sizes of OpenEXR's fixed-size attribute types.
+const std::map<std::string, int32_t> kFixedSizes = {
+    {"box2i", 16},
+    {"box2f", 16},
+    {"chromaticities", 32},
+    {"compression", 1},
+    {"deepImageState", 1},
+    {"double", 8},
+    {"envmap", 1},
+    {"float", 4},
+    {"int", 4},
+    {"keycode", 28},
+    {"lineOrder", 1},
+    {"m33d", 72},
+    {"m33f", 36},
+    {"m44d", 128},
+    {"m44f", 64},
+    {"rational", 8},
+    {"tiledesc", 9},
+    {"timecode", 8},
+    {"v2d", 16},
+    {"v2f", 8},
+    {"v2i", 8},
+    {"v3d", 24},
+    {"v3f", 12},
+    {"v3i", 12},
+};
+}  // namespace
+
+void check_exr_header(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return;  // OpenImageIO says why it cannot read it
+  in.seekg(0, std::ios::end);
+  const std::streamoff file_size = in.tellg();
+  in.seekg(0);
+  unsigned char start[8] = {};
+  if (!in.read(reinterpret_cast<char*>(start), 8)) return;
+  if (start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 || start[3] != 0x01) return;
+  const bool multipart = (start[5] & 0x10) != 0;  // version flags, bit 12
+  const auto bad = [&](const std::string& what) {
+    return Error(ErrorKind::kInput, "not a valid OpenEXR file: " + what,
+                 ErrorLocation{path.string(), 0, {}});
+  };
+  // A null-terminated name of at most 255 characters; empty at the end of a header.
+  const auto read_name = [&](const char* what) {
+    std::string name;
+    for (char c; in.get(c);) {
+      if (c == '\0') return name;
+      if (name.size() == 255) throw bad(std::string(what) + " longer than 255 characters");
+      name.push_back(c);
+    }
+    throw bad("the header ends early, in an attribute's " + std::string(what));
+  };
+  for (int part = 0;; ++part) {
+    int attributes = 0;
+    std::vector<std::string> required = {"channels", "compression", "dataWindow", "displayWindow",
+                                         "lineOrder"};
+    for (std::string name; !(name = read_name("name")).empty(); ++attributes) {
+      std::erase(required, name);
+      const std::string type = read_name("type");
+      unsigned char bytes[4];
+      if (!in.read(reinterpret_cast<char*>(bytes), 4)) {
+        throw bad("the header ends early, in the size of attribute '" + name + "'");
+      }
+      const int32_t size = int32_t(uint32_t(bytes[0]) | uint32_t(bytes[1]) << 8 |
+                                   uint32_t(bytes[2]) << 16 | uint32_t(bytes[3]) << 24);
+      const std::streamoff left = file_size - std::streamoff(in.tellg());
+      if (size < 0 || size > left) {
+        throw bad("attribute '" + name + "' (" + type + ") claims " + std::to_string(size) +
+                  " bytes, the file has " + std::to_string(left) + " left");
+      }
+      // OpenEXR reads a fixed-size type's own size whatever the header says: a different size
+      // would put it elsewhere in the file than this walk.
+      const auto fixed = kFixedSizes.find(type);
+      if (fixed != kFixedSizes.end() && size != fixed->second) {
+        throw bad("attribute '" + name + "' (" + type + ") has " + std::to_string(size) +
+                  " bytes, not " + std::to_string(fixed->second));
+      }
+      std::string value(size_t(size), '\0');
+      in.read(value.data(), size);
+      const auto u32 = [&](size_t at) {
+        return uint32_t(uint8_t(value[at])) | uint32_t(uint8_t(value[at + 1])) << 8 |
+               uint32_t(uint8_t(value[at + 2])) << 16 | uint32_t(uint8_t(value[at + 3])) << 24;
+      };
+      if (type == "box2i" && (name == "dataWindow" || name == "displayWindow")) {
+        // OpenEXR sizes its tables by the windows before it reads a pixel.
+        const int64_t width = int64_t(int32_t(u32(8))) - int32_t(u32(0)) + 1;
+        const int64_t height = int64_t(int32_t(u32(12))) - int32_t(u32(4)) + 1;
+        if (width < 1 || height < 1 || width > kMaxExrSide || height > kMaxExrSide) {
+          throw bad(name + " of " + std::to_string(width) + " x " + std::to_string(height) +
+                    " pixels (at most " + std::to_string(kMaxExrSide) + " a side)");
+        }
+      } else if (type == "chlist") {
+        // Channels: a name, 16 bytes (type, linear, reserved, sampling), ...; an empty name last.
+        size_t at = 0;
+        for (;;) {
+          const size_t end = value.find('\0', at);
+          if (end == std::string::npos) throw bad("attribute '" + name + "' (chlist) is cut");
+          if (end == at) break;
+          at = end + 1 + 16;
+        }
+        if (at + 1 != value.size()) {
+          throw bad("attribute '" + name + "' (chlist) does not fill its " + std::to_string(size) +
+                    " bytes");
+        }
+      } else if (type == "preview") {
+        // Width, height, then 4 bytes a pixel, allocated from the two numbers.
+        if (size < 8 || 8 + 4 * uint64_t(u32(0)) * u32(4) != uint64_t(size)) {
+          throw bad("attribute '" + name + "' (preview) does not hold its pixels");
+        }
+      }
+    }
+    if (attributes > 0 && !required.empty()) {
+      throw bad("part " + std::to_string(part) + " has no '" + required.front() + "' attribute");
+    }
+    // A single-part file has one header; a multipart file's list ends with an empty header.
+    if (!multipart || attributes == 0) return;
+  }
+}
+
 ImageFileContents read_image_file(const std::filesystem::path& path) {
+  check_exr_header(path);
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) {
     throw Error(ErrorKind::kInput, "cannot read the image: " + OIIO::geterror(),
@@ -37,7 +165,7 @@ ImageFileContents read_image_file(const std::filesystem::path& path) {
   const ErrorLocation where{path.string(), 0, {}};
   // The header's sizes are checked before anything is allocated: a file may declare any size
   // (a negative one, or 100000 x 100000 in a few bytes).
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1) {
     throw Error(ErrorKind::kInput,
                 "the header declares " + std::to_string(spec.width) + " x " +
                     std::to_string(spec.height) + " pixels of " + std::to_string(spec.nchannels) +

@@ -5,9 +5,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include <fmt/format.h>
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <memory>
 
+#include "color/image_output.h"
 #include "color/image_writers.h"
 #include "core/hash.h"
 
@@ -77,6 +81,15 @@ namespace {
 std::unique_ptr<OIIO::ImageInput> open_state_file(const fs::path& path, ImageMetadata& attributes) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw bad_file(path, "not a file");
+  // Not an EXR: said here, before OpenImageIO tries every format it knows on it.
+  char magic[4] = {};
+  std::ifstream(path, std::ios::binary).read(magic, 4);
+  if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0) throw bad_file(path, "not an OpenEXR file");
+  try {
+    check_exr_header(path);
+  } catch (const Error& e) {
+    throw bad_file(path, e.message());
+  }
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw bad_file(path, "not a readable image: " + OIIO::geterror());
   if (std::string(in->format_name()) != "openexr") throw bad_file(path, "not an OpenEXR file");
@@ -118,10 +131,14 @@ StateFileContents read_state_file(const fs::path& path) {
       throw bad_file(path, "state channel " + spec.channelnames[c] + " is not 32-bit unsigned");
     }
   }
-  const PixelRect window{{spec.x, spec.y}, {spec.x + spec.width, spec.y + spec.height}};
+  // In 64 bits: a damaged file's corners may be anywhere.
+  const int64_t end_x = int64_t(spec.x) + spec.width, end_y = int64_t(spec.y) + spec.height;
+  const PixelRect window{{spec.x, spec.y},
+                         {int(std::clamp<int64_t>(end_x, INT32_MIN, INT32_MAX)),
+                          int(std::clamp<int64_t>(end_y, INT32_MIN, INT32_MAX))}};
   if (spec.full_x != 0 || spec.full_y != 0 || spec.full_width < 1 || spec.full_height < 1 ||
       spec.full_width > kMaxFilmSide || spec.full_height > kMaxFilmSide || window.empty() ||
-      !PixelRect({0, 0}, {spec.full_width, spec.full_height}).contains(window) || spec.depth != 1) {
+      !PixelRect{{0, 0}, {spec.full_width, spec.full_height}}.contains(window) || spec.depth != 1) {
     throw bad_file(path, fmt::format("state window {}x{} at ({}, {}) is not inside a display "
                                      "window of at most {} pixels a side",
                                      spec.width, spec.height, spec.x, spec.y, kMaxFilmSide));

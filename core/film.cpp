@@ -44,7 +44,7 @@ Film::Film(int width, int height) : Film(width, height, PixelRect{{0, 0}, {width
 Film::Film(int width, int height, const PixelRect& window)
     : width_(width), height_(height), window_(window) {
   PRISM_CHECK(width > 0 && height > 0);
-  PRISM_CHECK(!window.empty() && PixelRect({0, 0}, {width, height}).contains(window));
+  PRISM_CHECK((!window.empty() && PixelRect{{0, 0}, {width, height}}.contains(window)));
   pixels_.resize(window.pixel_count());
 }
 

@@ -23,12 +23,14 @@ struct PixelRect {
   glm::ivec2 begin{0, 0};
   glm::ivec2 end{0, 0};
 
+  /// The sides, for a rectangle whose sides fit an int (any rectangle inside a film).
   int width() const { return end.x - begin.x; }
   int height() const { return end.y - begin.y; }
+  /// Exact for any corners (a rectangle read from a file may have any): 0 when empty.
   size_t pixel_count() const {
-    return size_t(std::max(0, width())) * size_t(std::max(0, height()));
+    return empty() ? 0 : size_t(int64_t(end.x) - begin.x) * size_t(int64_t(end.y) - begin.y);
   }
-  bool empty() const { return width() <= 0 || height() <= 0; }
+  bool empty() const { return end.x <= begin.x || end.y <= begin.y; }
   bool contains(glm::ivec2 p) const {
     return p.x >= begin.x && p.y >= begin.y && p.x < end.x && p.y < end.y;
   }

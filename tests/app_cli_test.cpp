@@ -7,6 +7,8 @@
 #include <fstream>
 #include <iterator>
 
+#include "core/app/cli.h"
+#include "core/error.h"
 #include "tests/support/app_test_helpers.h"
 #include "tests/support/test_support.h"
 
@@ -86,6 +88,24 @@ TEST(AppCli, ColorspacesListsTheConfig) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("colour spaces"), std::string::npos) << r.out;
   EXPECT_GT(line_count(r.out), 4u) << r.out;
+}
+
+/// parse_render_arguments() (the render-options fuzz target's entry) reads what run_cli() reads
+/// and turns a syntax error into Error(kUsage) in one line.
+TEST(AppCli, ParseRenderArgumentsFillsTheOptions) {
+  const RenderOptions o = parse_render_arguments(
+      {"-s", "8", "-r", "64", "48", "--set", "bvh.max_leaf_size=2", "a.dae"});
+  EXPECT_EQ(o.scene, "a.dae");
+  EXPECT_EQ(o.spp, 8);
+  EXPECT_EQ(o.resolution, std::make_pair(64, 48));
+  EXPECT_EQ(o.set, std::vector<std::string>{"bvh.max_leaf_size=2"});
+  try {
+    parse_render_arguments({"-r", "64"});
+    ADD_FAILURE() << "no error for -r with one value";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUsage);
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

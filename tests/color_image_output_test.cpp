@@ -334,5 +334,45 @@ TEST_F(ColorImageOutput, DisplayImagesAreEightBitThroughTheView) {
   EXPECT_FALSE(fs::exists(dir_ / "out.bmp"));
 }
 
+/// check_exr_header() (read_image_file, state files): an attribute claiming more bytes than the
+/// file holds is Error(kInput) naming it, before OpenEXR allocates them (found by the fuzzer:
+/// tests/fuzz/regressions/). A whole header passes, and so does a file that is not an EXR.
+TEST_F(ColorImageOutput, ExrHeaderClaimingMoreThanTheFileIsAnInputError) {
+  const auto write_bytes = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(dir_ / name, std::ios::binary) << bytes;
+    return dir_ / name;
+  };
+  using namespace std::string_literals;
+  const std::string magic = "\x76\x2f\x31\x01\x02\x00\x00\x00"s;
+  const fs::path huge =
+      write_bytes("huge.exr", magic + "comments\0string\0"s + "\xff\xff\xff\x7f"s + "abc");
+  const Error e = expect_error([&] { check_exr_header(huge); });
+  EXPECT_EQ(e.kind(), ErrorKind::kInput);
+  EXPECT_NE(std::string(e.what()).find("attribute 'comments' (string) claims 2147483647 bytes"),
+            std::string::npos)
+      << e.what();
+  EXPECT_THROW(read_image_file(huge), Error);
+  EXPECT_THROW(check_exr_header(write_bytes("cut.exr", magic + "comm")), Error);
+  // A header without the attributes every EXR has, and one with a window of 2^31 lines.
+  const Error missing = expect_error([&] {
+    check_exr_header(write_bytes("few.exr", magic + "a\0int\0\x04\0\0\0"
+                                                    "1234\0"s));
+  });
+  EXPECT_NE(std::string(missing.what()).find("has no 'channels' attribute"), std::string::npos)
+      << missing.what();
+  const Error tall = expect_error([&] {
+    check_exr_header(write_bytes("tall.exr", magic +
+                                                 "dataWindow\0box2i\0\x10\0\0\0"
+                                                 "\0\0\0\0\0\0\0\x80\0\0\0\0\xff\xff\xff\x7f"s));
+  });
+  EXPECT_NE(std::string(tall.what()).find("dataWindow of 1 x 4294967296 pixels"), std::string::npos)
+      << tall.what();
+  // What prism writes passes, and so does a file that is not an EXR.
+  ColorPipeline pipeline({});
+  write_exr(dir_ / "beauty.exr", make_image(3, 2), metadata_pairs, pipeline);
+  EXPECT_NO_THROW(check_exr_header(dir_ / "beauty.exr"));
+  EXPECT_NO_THROW(check_exr_header(write_bytes("not.exr", "PF\n1 1\n-1\n")));
+}
+
 }  // namespace
 }  // namespace prism

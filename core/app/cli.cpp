@@ -245,6 +245,19 @@ void agree_on_command(int exit_code, const std::string& message, const nlohmann:
 
 }  // namespace
 
+RenderOptions parse_render_arguments(const std::vector<std::string>& arguments) {
+  CLI::App render{"render", "render"};
+  RenderOptions options;
+  add_render_options(render, options);
+  std::vector<std::string> args(arguments.rbegin(), arguments.rend());  // consumed from the back
+  try {
+    render.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw Error(ErrorKind::kUsage, usage_error_line(e.what(), "prism render --help"));
+  }
+  return options;
+}
+
 int run_cli(int argc, const char* const* argv) {
   CLI::App app{"prism: a CPU path tracer with a BVH and an Embree backend", "prism"};
   app.set_version_flag("--version", std::string("prism ") + PRISM_VERSION);

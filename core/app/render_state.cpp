@@ -220,6 +220,7 @@ RenderStateRecord render_state_from_text(const std::string& text, const std::str
   RenderStateRecord r;
   f.object("identity");  // present and an object
   r.identity = j.at("identity");
+  f.object("options");  // present (options_from_json checks the rest)
   r.options = options_from_json(j.at("options"), source);
   const auto w = f.get<std::array<int, 4>>("window");
   r.window = PixelRect{{w[0], w[1]}, {w[2], w[3]}};
@@ -238,7 +239,7 @@ RenderStateRecord render_state_from_text(const std::string& text, const std::str
   if (r.width < 1 || r.height < 1 || r.width > kMaxFilmSide || r.height > kMaxFilmSide) {
     bad(fmt::format("resolution {} x {} is out of range", r.width, r.height));
   }
-  if (r.window.empty() || !PixelRect({0, 0}, {r.width, r.height}).contains(r.window)) {
+  if (r.window.empty() || !PixelRect{{0, 0}, {r.width, r.height}}.contains(r.window)) {
     bad("the window is not inside the image");
   }
   if (r.spp < 1 || r.samples.last <= r.samples.first || r.samples.last > uint32_t(r.spp)) {
