@@ -7,8 +7,9 @@
 // (ThreadLimit, or a ThreadArena's size) less the helpers already running; nested loops and
 // parallel_invoke draw on the budget of the thread they run on and run inline when it is spent.
 // So prism's loops never run on more threads than the limit, however deep the recursion,
-// besides threads that callers started themselves. Helpers take work chunk by chunk from a
-// shared counter; which thread runs which chunk does not change any result (core/parallel.h).
+// besides threads that callers started themselves. Each thread of a loop takes a first chunk of
+// its own, then the next untaken chunk from a shared counter; which thread runs which chunk does
+// not change any result (core/parallel.h).
 #include <sched.h>
 
 #include <tbb/global_control.h>
@@ -87,24 +88,32 @@ thread_local Budget* t_budget = nullptr;
 
 Budget& current_budget() { return t_budget != nullptr ? *t_budget : global_limits().budget; }
 
-/// Runs work() on the calling thread and on up to `wanted` helpers that the budget allows, and
-/// returns when every one has returned. work() must not throw.
-void run_team(size_t wanted, const std::function<void()>& work) {
+/// Runs work(member, members) for every member of a team: the calling thread (member 0) and
+/// up to `wanted` helpers that the budget allows (members 1 ...), and returns when every one has
+/// returned. work() must not throw.
+void run_team(size_t wanted, const std::function<void(size_t, size_t)>& work) {
   Budget& budget = current_budget();
+  size_t members = 1;
+  while (members <= wanted && budget.try_acquire()) ++members;
   std::vector<std::thread> helpers;
-  while (helpers.size() < wanted && budget.try_acquire()) {
+  helpers.reserve(members - 1);
+  size_t started = 1;
+  for (; started < members; ++started) {
     try {
-      helpers.emplace_back([&budget, &work] {
+      helpers.emplace_back([&budget, &work, started, members] {
         t_budget = &budget;
-        work();
+        work(started, members);
         budget.release();
       });
-    } catch (const std::system_error&) {  // out of threads: those running do the work
-      budget.release();
+    } catch (const std::system_error&) {  // out of threads: the caller stands in for the rest
       break;
     }
   }
-  work();
+  work(0, members);
+  for (size_t member = started; member < members; ++member) {
+    budget.release();
+    work(member, members);
+  }
   for (std::thread& helper : helpers) helper.join();
 }
 
@@ -125,14 +134,16 @@ void run_chunks(size_t chunks, const std::function<void(size_t)>& body) {
     body(0);
     return;
   }
-  std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
   std::mutex error_mutex;
   std::exception_ptr error;
-  run_team(chunks - 1, [&] {
-    while (!failed.load(std::memory_order_relaxed)) {
-      const size_t c = next.fetch_add(1, std::memory_order_relaxed);
-      if (c >= chunks) break;
+  // Member m of the team takes chunk m first, then the next untaken one: every thread of the
+  // team runs at least one chunk, however late it starts (so ThreadSanitizer always sees the
+  // loop on several threads), and the rest balance.
+  std::atomic<size_t> taken{0};  // of the chunks after the first `members`
+  run_team(chunks - 1, [&](size_t member, size_t members) {
+    for (size_t c = member; c < chunks && !failed.load(std::memory_order_relaxed);
+         c = members + taken.fetch_add(1, std::memory_order_relaxed)) {
       try {
         body(c);
       } catch (...) {
