@@ -17,11 +17,13 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kStateImageName = "prism.state";
-constexpr int kStateVersion = 1;
+constexpr int kStateVersion = 2;
 
 std::string word_channel(int word) { return fmt::format("state.{:02d}", word); }
 
-uint64_t checksum(std::span<const FilmPixel> pixels) { return fnv1a64(std::as_bytes(pixels)); }
+uint64_t checksum(std::span<const FilmPixel> pixels) {
+  return fnv1a64_words(std::as_bytes(pixels));
+}
 
 Error bad_file(const fs::path& path, const std::string& message) {
   return Error(ErrorKind::kInput, message, ErrorLocation{path.string(), 0, "render state"});
@@ -54,7 +56,9 @@ void write_state_file(const fs::path& path, const Image& image, const Film& film
   state.channelnames.clear();
   for (int k = 0; k < FilmPixel::kWords; ++k) state.channelnames.push_back(word_channel(k));
   state.attribute("name", kStateImageName);
-  state.attribute("compression", "zip");
+  // RLE: the high words of the sums are mostly zero, so it shrinks the state about threefold at a
+  // quarter of zip's cost (33 MB at 480 x 360: 11 MB in 0.11 s, zip 6.4 MB in 0.5 s).
+  state.attribute("compression", "rle");
   state.attribute("prism:stateVersion", kStateVersion);
   state.attribute("prism:stateChecksum", hex64(checksum(film.pixels())));
   state.attribute("prism:nonFiniteSamples", std::to_string(film.non_finite_samples()));

@@ -14,7 +14,8 @@ namespace prism {
 /// 1. the render's image as write_exr writes `image` (any EXR viewer shows it), with `metadata`;
 /// 2. "prism.state": every pixel's FilmPixel over the same data window, as FilmPixel::kWords
 ///    32-bit unsigned channels state.00, state.01, ... (little-endian words of the struct),
-///    with prism:stateVersion, prism:stateChecksum (hex64 of the FNV-1a of the words) and
+///    with prism:stateVersion (2), prism:stateChecksum (hex64 of fnv1a64_words() of the words,
+///    RLE-compressed) and
 ///    prism:nonFiniteSamples.
 /// Written atomically like every output. Throws as write_exr.
 void write_state_file(const std::filesystem::path& path, const Image& image, const Film& film,

@@ -142,6 +142,9 @@ void check_output_writable(const fs::path& path) {
   }
   ::close(fd);
   ::unlink(probe.c_str());
+  // A run that ends without writing `path` (a resumed render that finishes before its next
+  // checkpoint) must not leave the temporary files of runs killed while writing it.
+  remove_stale_temp_files(path);
 }
 
 void remove_pending_temp_files() noexcept {

@@ -32,7 +32,8 @@ class AtomicFile {
 /// Throws Error(kOutput) naming `path` when a file cannot be created there: no file name, a
 /// missing folder, a folder that is not one, a path that is a folder, or a folder where no file
 /// can be created (found by creating and removing a hidden probe file: the only test that
-/// covers permissions, read-only mounts, ACLs and quotas). Called before long work.
+/// covers permissions, read-only mounts, ACLs and quotas). Called before long work. Then removes
+/// the temporary files of `path` that dead processes left, as creating an AtomicFile does.
 void check_output_writable(const std::filesystem::path& path);
 
 /// Deletes the temporary file of every AtomicFile alive, with unlink() only: safe in a signal

@@ -19,13 +19,8 @@ WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), tmin(ray.tmin
 
 namespace {
 
-/// The vertices relative to the ray origin in the ray's sheared frame: (x, y) in the plane
-/// normal to the direction, z along the permuted axis. The same operations in the same order
-/// everywhere (the SIMD kernels repeat them), so every caller gets the same bits.
-struct ShearedTriangle {
-  float ax, ay, az, bx, by, bz, cx, cy, cz;
-};
-
+/// The same operations in the same order everywhere (the SIMD kernels repeat them), so every
+/// caller gets the same bits.
 ShearedTriangle shear(const WatertightRay& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   const Vec3 a = p0 - ray.origin;
   const Vec3 b = p1 - ray.origin;
@@ -43,21 +38,16 @@ ShearedTriangle shear(const WatertightRay& ray, const Vec3& p0, const Vec3& p1, 
   return s;
 }
 
-/// Whether the triangle's vertices are collinear or coincide, exactly: its cross product in
-/// double (where the differences of floats are exact) is zero. Such a triangle has no area and
-/// is never hit, whatever rounding the sheared frame adds.
-bool is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+}  // namespace
+
+bool is_degenerate_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   const DVec3 e1 = DVec3(p1) - DVec3(p0);
   const DVec3 e2 = DVec3(p2) - DVec3(p0);
   return glm::cross(e1, e2) == DVec3(0.0);
 }
 
-}  // namespace
-
-std::optional<PrimitiveHit> triangle_hit_parameters(const WatertightRay& ray, const Vec3& p0,
-                                                    const Vec3& p1, const Vec3& p2) {
-  if (is_degenerate(p0, p1, p2)) return std::nullopt;
-  const ShearedTriangle s = shear(ray, p0, p1, p2);
+std::optional<PrimitiveHit> sheared_triangle_hit(const WatertightRay& ray,
+                                                 const ShearedTriangle& s) {
   // Float products of the edge functions cancel badly on long thin triangles seen along their
   // length, and t interpolates vertex depths that differ by the whole length with them: a float
   // t can be off by 1e-4 relative and put the farther of two nearby slivers first. In double the
@@ -72,6 +62,14 @@ std::optional<PrimitiveHit> triangle_hit_parameters(const WatertightRay& ray, co
   const float t = static_cast<float>(t_scaled / det);
   if (!(t >= ray.tmin && t <= ray.tmax)) return std::nullopt;
   return PrimitiveHit{t, static_cast<float>(e1 / det), static_cast<float>(e2 / det)};
+}
+
+std::optional<PrimitiveHit> triangle_hit_parameters(const WatertightRay& ray, const Vec3& p0,
+                                                    const Vec3& p1, const Vec3& p2) {
+  const std::optional<PrimitiveHit> hit = sheared_triangle_hit(ray, shear(ray, p0, p1, p2));
+  // Checked last: most candidates fail the interval first.
+  if (!hit || is_degenerate_triangle(p0, p1, p2)) return std::nullopt;
+  return hit;
 }
 
 std::optional<PrimitiveHit> intersect_triangle(const WatertightRay& ray, const Vec3& p0,

@@ -20,6 +20,9 @@ struct PrimitiveHit {
 /// direction to +z.
 struct WatertightRay {
   explicit WatertightRay(const Ray& ray);
+  /// Fields to be filled by a caller that computed them with the same operations (the SIMD
+  /// kernels' per-ray setup).
+  WatertightRay() = default;
 
   Vec3 origin;
   int kx, ky, kz;
@@ -34,6 +37,21 @@ struct WatertightRay {
 /// (exact zeros re-decided in double); t, u, v come from triangle_hit_parameters().
 std::optional<PrimitiveHit> intersect_triangle(const WatertightRay& ray, const Vec3& p0,
                                                const Vec3& p1, const Vec3& p2);
+
+/// The vertices relative to the ray origin in the ray's sheared frame, as intersect_triangle()
+/// computes them: (x, y) across the ray, z along its permuted axis.
+struct ShearedTriangle {
+  float ax, ay, az, bx, by, bz, cx, cy, cz;
+};
+
+/// t, u, v of a sheared triangle (see triangle_hit_parameters()), without the degenerate-triangle
+/// check: nothing when the double determinant is zero or t is outside [ray.tmin, ray.tmax].
+std::optional<PrimitiveHit> sheared_triangle_hit(const WatertightRay& ray,
+                                                 const ShearedTriangle& s);
+
+/// Whether the triangle's vertices are collinear or coincide, exactly (its cross product in
+/// double is zero): such a triangle has no area and is never hit.
+bool is_degenerate_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2);
 
 /// The second half of intersect_triangle(), for callers that made the hit decision themselves
 /// with the same float operations (the SIMD kernels): t, u, v from the edge functions evaluated

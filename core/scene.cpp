@@ -66,6 +66,14 @@ void Scene::validate() const {
                   {{}, 0, what});
     }
   };
+  for (const Material& m : materials) {
+    for (const uint32_t t : {m.reflectance_texture, m.radiance_texture}) {
+      if (t != kNoTexture && t >= textures.size()) {
+        throw Error(ErrorKind::kInput, "texture index " + std::to_string(t) + " out of range",
+                    {{}, 0, "material '" + m.name + "'"});
+      }
+    }
+  }
   for (const auto& m : geometry.meshes) check_material(m.material_id, "mesh '" + m.name + "'");
   for (size_t i = 0; i < geometry.spheres.size(); ++i) {
     check_material(geometry.spheres[i].material_id, "sphere " + std::to_string(i));

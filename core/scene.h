@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "core/material.h"
 #include "core/ray.h"
 #include "core/scene_geometry.h"
+#include "core/texture.h"
 
 namespace prism {
 
@@ -50,16 +52,27 @@ struct Scene {
   std::string source;  ///< file it came from, or a description for built-in scenes
   SceneGeometry geometry;
   std::vector<Material> materials;
+  /// The images materials name (Material::reflectance_texture, radiance_texture).
+  std::vector<TextureSource> textures;
   std::vector<Light> lights;
   Camera camera;
   SceneRenderSettings settings;
   /// Set by the render driver from -e (scene files do not name one); none: no environment.
   std::optional<SceneEnvironment> environment;
+  /// Lookups in `textures`, converted to the working space: set by the render driver
+  /// (load_scene_textures() in color/texture_set.h) before rendering; null until then. Shading
+  /// a textured material without it is an internal error.
+  std::shared_ptr<const TextureLookup> texture_lookup;
+  /// Defects of the file the loader tolerated, in the order found, one line each
+  /// ("file:line: <element>: what was read instead"); the driver prints each as
+  /// "prism: warning: ...". They never change scene_hash().
+  std::vector<std::string> warnings;
 
   /// The surface at `hit` of `ray` (hit must come from an accelerator built on this geometry).
   SurfaceInteraction surface_at(const Ray& ray, const Hit& hit) const;
 
-  /// Checks geometry, camera, and every material id: throws Error(kInput) naming the element.
+  /// Checks geometry, camera, every material id and texture index: throws Error(kInput) naming
+  /// the element.
   void validate() const;
 };
 

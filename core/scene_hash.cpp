@@ -64,7 +64,14 @@ uint64_t scene_hash(const Scene& scene) {
     h.add(m.eta);
     h.add(m.k);
     h.add(m.radiance);
+    h.add(m.reflectance_texture);
+    h.add(m.radiance_texture);
   }
+  // Textures by their pixels once loaded (converted to the working space), not by file names,
+  // which change with the folder a render starts in.
+  h.add(uint64_t(scene.textures.size()));
+  h.add(scene.texture_lookup != nullptr);
+  if (scene.texture_lookup) h.add(scene.texture_lookup->content_hash());
   h.add(uint64_t(scene.lights.size()));
   for (const Light& l : scene.lights) {
     h.add(l.type);

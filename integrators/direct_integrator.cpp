@@ -8,7 +8,9 @@ namespace {
 class DirectEstimator final : public PixelEstimator {
  public:
   DirectEstimator(const RenderContext& context, const LightTransportSettings& settings)
-      : context_(context), settings_(settings), shading_(context.scene, settings.bsdf) {}
+      : context_(context),
+        settings_(settings),
+        shading_(context.scene, settings.bsdf, settings.lights, texture_filter_of(context)) {}
 
   Rgb li(const Ray& ray, Sampler& sampler, AovSample& aovs) const override;
 
@@ -22,7 +24,8 @@ Rgb DirectEstimator::li(const Ray& ray, Sampler& sampler, AovSample& aovs) const
   const std::optional<Hit> hit = context_.accel.intersect(ray);
   if (!hit) return shading_.lights.le_escaped(glm::normalize(ray.direction));
   const SurfaceInteraction si = context_.scene.surface_at(ray, *hit);
-  const Bsdf& bsdf = *shading_.bsdfs[si.material_id];
+  BsdfStorage bsdf_storage;
+  const Bsdf& bsdf = shading_.bsdf_at(si, bsdf_storage);
   aovs.albedo = bsdf.albedo();
   aovs.normal = si.shading_normal;
   aovs.depth = hit->t * glm::length(ray.direction);

@@ -71,7 +71,14 @@ AovSample hit_aovs(const Scene& scene, const Ray& ray, const Hit& hit,
   aovs.normal = si.shading_normal;
   aovs.depth = hit.t * glm::length(ray.direction);
   if (si.material_id < scene.materials.size()) {
-    aovs.albedo = material_albedo(scene.materials[si.material_id]);
+    const Material& material = scene.materials[si.material_id];
+    aovs.albedo = material_albedo(material);
+    if (material.reflectance_texture != kNoTexture && scene.texture_lookup) {
+      // Unfiltered: these AOVs belong to the integrators that do not shade.
+      const Rgb texel =
+          scene.texture_lookup->lookup(material.reflectance_texture, si.uv, Vec2(0.0f), Vec2(0.0f));
+      aovs.albedo = glm::clamp(material.reflectance * texel, Rgb(0.0f), Rgb(1.0f));
+    }
   }
   return aovs;
 }

@@ -25,6 +25,9 @@ struct RenderContext {
   /// Camera rays per pixel of the whole render (-s): samplers stratify over it, whichever
   /// part of the sample range one call renders.
   int spp = 1;
+  /// Height of the whole image in pixels, which with the camera's field of view says how wide
+  /// a pixel is for texture filtering; 0: textures are looked up without filtering.
+  int image_height = 0;
   int adaptive_batch = 0;                ///< adaptive sampling batch size, 0 = off (-a B tol)
   float adaptive_tolerance = 0.05f;      ///< adaptive sampling tolerance (-a B tol)
   ProgressReporter* progress = nullptr;  ///< may be null; Integrator::render() advances it

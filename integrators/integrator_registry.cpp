@@ -17,12 +17,14 @@ const Registry<Integrator>& integrator_registry() {
                 "global illumination: path tracing with next-event estimation, MIS, Russian "
                 "roulette (path.max_depth or -m, path.light_samples or -l, path.hemisphere or "
                 "-H, path.mis, path.accumulate, path.rr, path.rr_depth, path.rr_probability, "
-                "path.microfacet)",
+                "path.microfacet, path.ambient_visible, path.two_sided_emitters or "
+                "--two-sided-emitters)",
                 [](const ParamSet& p) { return std::make_unique<PathIntegrator>(p); }},
           Entry{"direct",
                 "zero plus one bounce: light importance sampling, or uniform hemisphere "
                 "sampling (direct.light_samples or -l, direct.hemisphere or -H, "
-                "direct.microfacet)",
+                "direct.microfacet, direct.ambient_visible, direct.two_sided_emitters or "
+                "--two-sided-emitters)",
                 [](const ParamSet& p) { return std::make_unique<DirectIntegrator>(p); }},
           Entry{"ao", "ambient occlusion at the first hit (ao.samples, ao.max_distance)",
                 [](const ParamSet& p) { return std::make_unique<AoIntegrator>(p); }},

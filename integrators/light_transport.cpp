@@ -17,6 +17,8 @@ LightTransportSettings::LightTransportSettings(const std::string& name, const Pa
     : light_samples(
           int(params.get_int(name + ".light_samples", kDefaultLightSamples, 1, kMaxLightSamples))),
       hemisphere(params.get_bool(name + ".hemisphere", false)) {
+  lights.ambient_visible = params.get_bool(name + ".ambient_visible", false);
+  lights.two_sided_emitters = params.get_bool(name + ".two_sided_emitters", false);
   const std::string model = params.get_string(name + ".microfacet", "beckmann");
   if (model == "beckmann") {
     bsdf.microfacet = MicrofacetModel::kBeckmann;
@@ -28,8 +30,24 @@ LightTransportSettings::LightTransportSettings(const std::string& name, const Pa
   }
 }
 
-ShadingContext::ShadingContext(const Scene& scene, const BsdfOptions& options)
-    : bsdfs(make_bsdfs(scene.materials, options)), lights(scene) {}
+ShadingContext::ShadingContext(const Scene& scene_in, const BsdfOptions& bsdf_options_in,
+                               const LightOptions& light_options, const TextureFilter& filter)
+    : scene(scene_in),
+      bsdf_options(bsdf_options_in),
+      textures(scene_in, filter),
+      bsdfs(make_bsdfs(scene_in.materials, bsdf_options_in)),
+      lights(scene_in, light_options, &textures) {}
+
+const Bsdf& ShadingContext::bsdf_at(const SurfaceInteraction& si, BsdfStorage& storage) const {
+  const Material& material = scene.materials[si.material_id];
+  if (material.reflectance_texture == kNoTexture) return *bsdfs[si.material_id];
+  return make_bsdf_with_reflectance(material, textures.reflectance(material, si), bsdf_options,
+                                    storage);
+}
+
+TextureFilter texture_filter_of(const RenderContext& context) {
+  return camera_texture_filter(context.camera, context.image_height, context.spp);
+}
 
 ShadingPoint::ShadingPoint(const SurfaceInteraction& si_in, const Ray& ray, const Bsdf& bsdf_in)
     : si(si_in),

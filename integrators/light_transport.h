@@ -11,6 +11,7 @@
 #include "integrators/integrator_defaults.h"
 #include "integrators/lights/light_set.h"
 #include "integrators/sampling/frame.h"
+#include "integrators/surface_textures.h"
 
 namespace prism {
 
@@ -18,23 +19,40 @@ namespace prism {
 /// - microfacet: beckmann (default) or ggx;
 /// - light_samples (default kDefaultLightSamples, in [1, kMaxLightSamples]; -l): samples per
 ///   non-delta light of the one-bounce estimators, or hemisphere rays per light;
-/// - hemisphere (default false; -H): the one-bounce estimate by uniform hemisphere sampling.
+/// - hemisphere (default false; -H): the one-bounce estimate by uniform hemisphere sampling;
+/// - ambient_visible (default false): ambient lights are a sky that escaping rays see (camera
+///   rays and bounces, MIS-weighted), not only lights found by light sampling (LightOptions);
+/// - two_sided_emitters (default false; --two-sided-emitters): emitters lit on both sides.
 struct LightTransportSettings {
   /// Throws Error(kUsage) naming the key on a bad value.
   LightTransportSettings(const std::string& name, const ParamSet& params);
   BsdfOptions bsdf;
+  LightOptions lights;
   int light_samples;
   bool hemisphere;
 };
 
-/// Per-render shading state of the light-transport integrators: one BSDF per material and the
-/// scene's lights. Built once per render from the Scene (which must outlive it), read-only
-/// afterwards.
+/// Per-render shading state of the light-transport integrators: one BSDF per material, the
+/// texture lookups and the scene's lights. Built once per render from the Scene (which must
+/// outlive it), read-only afterwards. `filter` says how wide a pixel is for texture filtering
+/// (camera_texture_filter(); the default filters nothing).
 struct ShadingContext {
-  ShadingContext(const Scene& scene, const BsdfOptions& options);
-  std::vector<std::unique_ptr<Bsdf>> bsdfs;
+  ShadingContext(const Scene& scene, const BsdfOptions& bsdf_options,
+                 const LightOptions& light_options, const TextureFilter& filter = {});
+  /// The BSDF at `si`: its material's shared one, or for a material with a reflectance
+  /// texture one built in `storage` from the texture there (untextured materials cost nothing
+  /// more than before). Valid as long as `storage` and this context.
+  const Bsdf& bsdf_at(const SurfaceInteraction& si, BsdfStorage& storage) const;
+
+  const Scene& scene;
+  BsdfOptions bsdf_options;
+  SurfaceTextures textures;
+  std::vector<std::unique_ptr<Bsdf>> bsdfs;  ///< per material
   LightSet lights;
 };
+
+/// The filter of the render `context` describes (camera_texture_filter()).
+TextureFilter texture_filter_of(const RenderContext& context);
 
 /// A surface hit ready for shading: the shading frame from the shading normal, the BSDF, and
 /// wo. World-space helpers apply the leak check with the geometric normal: a direction pair is
@@ -69,7 +87,8 @@ Rgb estimate_direct_lights(const ShadingPoint& sp, Sampler& sampler, const Rende
 
 /// Light arriving at `sp` directly from emitters, by uniform hemisphere sampling (on wo's side):
 /// light_samples x (number of lights, at least 1) rays; light arrives only from emissive
-/// geometry hit and from infinite lights on escape.
+/// geometry hit and, on escape, from the infinite lights escaping rays see (so not from delta,
+/// CGL area or hidden ambient lights, as in the homework's hemisphere estimator).
 Rgb estimate_direct_hemisphere(const ShadingPoint& sp, Sampler& sampler,
                                const RenderContext& context, const ShadingContext& shading,
                                int light_samples);

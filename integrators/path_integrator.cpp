@@ -23,7 +23,8 @@ class PathEstimator final : public PixelEstimator {
   PathEstimator(const RenderContext& context, const PathIntegrator::Settings& settings)
       : context_(context),
         settings_(settings),
-        shading_(context.scene, settings.light_transport.bsdf) {}
+        shading_(context.scene, settings.light_transport.bsdf, settings.light_transport.lights,
+                 texture_filter_of(context)) {}
 
   Rgb li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const override;
 
@@ -97,7 +98,8 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
       break;
     }
     const SurfaceInteraction si = context.scene.surface_at(ray, *hit);
-    const Bsdf& bsdf = *shading.bsdfs[si.material_id];
+    BsdfStorage bsdf_storage;
+    const Bsdf& bsdf = shading.bsdf_at(si, bsdf_storage);
     if (bounces == 0) {
       aovs.albedo = bsdf.albedo();
       aovs.normal = si.shading_normal;

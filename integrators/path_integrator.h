@@ -17,7 +17,8 @@ namespace prism {
 /// - rr (default true), rr_depth (default 3, or 1 with rr_probability), rr_probability
 ///   (default 0: continuation probability from the path throughput; in (0,1]: that fixed
 ///   continuation probability).
-/// - microfacet, light_samples, hemisphere: see LightTransportSettings.
+/// - microfacet, light_samples, hemisphere, ambient_visible, two_sided_emitters: see
+///   LightTransportSettings.
 class PathIntegrator final : public PixelIntegrator {
  public:
   /// Everything the estimator reads from the parameters.

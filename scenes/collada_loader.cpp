@@ -45,7 +45,9 @@ class SceneBuilder {
       doc_.fail(node,
                 "the scene instantiates more than " + std::to_string(kMaxNodeVisits) + " nodes");
     }
-    const DMat4 world = parent * node_transform(doc_, node);
+    std::vector<ShortMatrix> short_matrices;
+    const DMat4 world = parent * node_transform(doc_, node, &short_matrices);
+    for (const ShortMatrix& short_matrix : short_matrices) check_short_matrix(node, short_matrix);
     for (pugi::xml_node child = node.first_child(); child; child = child.next_sibling()) {
       const std::string_view name = child.name();
       if (name == "node") {
@@ -71,6 +73,40 @@ class SceneBuilder {
   const DMat4& camera_world() const { return camera_world_; }
 
  private:
+  // The homework reads a short <matrix> with the missing numbers as 0. It reads cameras and
+  // lights through the matrix's top three rows only, so they come out as the file meant; but
+  // it divides vertex positions by the bottom row (w), which a missing bottom-right 1 makes 0
+  // at the node's origin: geometry under such a node is lost there, so here it is an error.
+  void check_short_matrix(pugi::xml_node node, const ShortMatrix& short_matrix) const {
+    const std::string count = std::to_string(short_matrix.numbers) + " numbers, not 16";
+    if (const pugi::xml_node geometry = first_geometry_instance(node)) {
+      doc_.fail(short_matrix.element,
+                count + "; a short <matrix> is read (missing numbers as 0, as the CS184 " +
+                    "homework does) only above cameras and lights, and this node holds " +
+                    describe(geometry) + " at line " + std::to_string(doc_.line_of(geometry)));
+    }
+    doc_.warn(short_matrix.element,
+              count + "; the missing ones are read as 0, as the CS184 homework does");
+  }
+
+  // An <instance_geometry> or <instance_node> (which may hold geometry) in `node` or the
+  // <node>s nested in it; null when there is none.
+  static pugi::xml_node first_geometry_instance(pugi::xml_node node) {
+    std::vector<pugi::xml_node> stack{node};  // explicit: a deep file must not exhaust the stack
+    while (!stack.empty()) {
+      const pugi::xml_node current = stack.back();
+      stack.pop_back();
+      std::vector<pugi::xml_node> nested;
+      for (pugi::xml_node child = current.first_child(); child; child = child.next_sibling()) {
+        const std::string_view name = child.name();
+        if (name == "instance_geometry" || name == "instance_node") return child;
+        if (name == "node") nested.push_back(child);
+      }
+      stack.insert(stack.end(), nested.rbegin(), nested.rend());
+    }
+    return {};
+  }
+
   const Geometry& geometry_for(pugi::xml_node element) {
     std::unique_ptr<Geometry>& slot = geometries_[element.hash_value()];
     if (!slot) slot = std::make_unique<Geometry>(parse_geometry(doc_, element));
@@ -176,6 +212,7 @@ Scene load_collada(const std::filesystem::path& path, const SceneLoadOptions& op
   // The homework renders its scenes at 480 x 360; the driver fits the fovs to the output size.
   scene.settings.width = 480;
   scene.settings.height = 360;
+  scene.warnings = doc.warnings();
   return scene;
 }
 

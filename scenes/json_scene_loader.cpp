@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "scenes/json/json_document.h"
 #include "scenes/json/json_meshes.h"
+#include "scenes/json/json_textures.h"
 
 namespace prism {
 namespace {
@@ -85,7 +86,15 @@ Camera read_camera(const JsonNode& node, const SceneRenderSettings& settings) {
   return camera;
 }
 
-Material read_material(const JsonNode& node) {
+/// A material's optional colour `key` that may name a texture (json_textures.h).
+Rgb textured_color_or(const JsonNode& node, std::string_view key, Rgb fallback, Range range,
+                      json::TextureContext& textures, uint32_t& texture) {
+  texture = kNoTexture;
+  const auto value = node.find(key);
+  return value ? json::read_textured_color(*value, range, textures, texture) : fallback;
+}
+
+Material read_material(const JsonNode& node, json::TextureContext& textures) {
   node.expect_object();
   if (!node.has("type")) {
     // A misspelt "type" reads better as an unknown key than as a missing one.
@@ -100,11 +109,13 @@ Material read_material(const JsonNode& node) {
   if (kind == "diffuse") {
     node.check_keys({"name", "type", "reflectance"});
     m.type = MaterialType::kDiffuse;
-    m.reflectance = json::color_or(node, "reflectance", Rgb(0.5f), unit);
+    m.reflectance =
+        textured_color_or(node, "reflectance", Rgb(0.5f), unit, textures, m.reflectance_texture);
   } else if (kind == "mirror") {
     node.check_keys({"name", "type", "reflectance"});
     m.type = MaterialType::kMirror;
-    m.reflectance = json::color_or(node, "reflectance", Rgb(1.0f), unit);
+    m.reflectance =
+        textured_color_or(node, "reflectance", Rgb(1.0f), unit, textures, m.reflectance_texture);
   } else if (kind == "glass") {
     node.check_keys({"name", "type", "reflectance", "transmittance", "roughness", "ior"});
     m.type = MaterialType::kGlass;
@@ -119,15 +130,26 @@ Material read_material(const JsonNode& node) {
     m.roughness = json::number_or(node, "roughness", 0.0f, non_negative);
     m.ior = json::number_or(node, "ior", 1.5f, Range::above(0.0));
   } else if (kind == "microfacet") {
-    node.check_keys({"name", "type", "alpha", "eta", "k"});
+    node.check_keys({"name", "type", "alpha", "eta", "k", "reflectance"});
     m.type = MaterialType::kMicrofacet;
     m.alpha = json::number_or(node, "alpha", 0.5f, Range::above(0.0));
-    m.eta = node.child("eta").color(Range::above(0.0));
-    m.k = node.child("k").color(non_negative);
+    if (const auto reflectance = node.find("reflectance")) {
+      // The metal by its colour: eta and k follow (conductor_from_reflectance()).
+      if (node.has("eta") || node.has("k")) {
+        reflectance->fail("give either 'reflectance' or 'eta' and 'k', not both");
+      }
+      m.reflectance =
+          json::read_textured_color(*reflectance, unit, textures, m.reflectance_texture);
+      conductor_from_reflectance(m.reflectance, m.eta, m.k);
+    } else {
+      m.eta = node.child("eta").color(Range::above(0.0));
+      m.k = node.child("k").color(non_negative);
+    }
   } else if (kind == "emission") {
     node.check_keys({"name", "type", "radiance"});
     m.type = MaterialType::kEmission;
-    m.radiance = node.child("radiance").color(non_negative);
+    m.radiance = json::read_textured_color(node.child("radiance"), non_negative, textures,
+                                           m.radiance_texture);
   } else {
     type.fail("unknown material type '" + kind +
               "'; available: diffuse, mirror, glass, refraction, microfacet, emission");
@@ -225,10 +247,11 @@ Scene read_scene(const json::JsonDocument& doc) {
   scene.camera = read_camera(root.child("camera"), scene.settings);
 
   json::MaterialNames names;
+  json::TextureContext textures{doc.file().parent_path(), &scene.textures};
   if (const auto materials = root.find("materials")) {
     for (size_t i = 0; i < materials->size(); ++i) {
       const JsonNode node = materials->at(i);
-      scene.materials.push_back(read_material(node));
+      scene.materials.push_back(read_material(node, textures));
       names.add(scene.materials.back().name, static_cast<uint32_t>(i), node.child("name"));
     }
   }

@@ -82,9 +82,8 @@ struct PlyElement {
   bool list_is_last = false;    ///< the usual layout: scalars, then one list
 };
 
-/// Assimp 5.2's PLY reader loops forever on a header without end_header and quietly accepts
-/// truncated bodies (reading garbage vertices), so the file's structure is checked first: the
-/// header's syntax, and a body long enough for the elements it declares.
+}  // namespace
+
 void check_ply_structure(const std::filesystem::path& path, const ErrorLocation& where) {
   std::ifstream in(path, std::ios::binary);
   const auto fail = [&](int line, const std::string& message) {
@@ -182,8 +181,6 @@ void check_ply_structure(const std::filesystem::path& path, const ErrorLocation&
     }
   }
 }
-
-}  // namespace
 
 TriangleMesh load_mesh_file(const std::filesystem::path& path) {
   const ErrorLocation where{path.string(), 0, {}};

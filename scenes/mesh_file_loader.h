@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "core/error.h"
 #include "core/scene_geometry.h"
 
 namespace prism {
@@ -14,5 +15,11 @@ namespace prism {
 /// .obj/.ply, Assimp cannot read it (Assimp's message is included), it holds no triangle, or a
 /// coordinate is not finite. Throws Error(kResource) when memory runs out.
 TriangleMesh load_mesh_file(const std::filesystem::path& path);
+
+/// Assimp 5.2's PLY reader loops forever on a header without end_header and quietly accepts
+/// truncated bodies (reading garbage vertices), so PLY files are checked before Assimp reads
+/// them: the header's syntax, and a body long enough for the elements it declares. Throws
+/// Error(kInput) at `where` (with the line when known) otherwise.
+void check_ply_structure(const std::filesystem::path& path, const ErrorLocation& where);
 
 }  // namespace prism

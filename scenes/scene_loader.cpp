@@ -7,6 +7,7 @@
 #include "core/strings.h"
 #include "scenes/collada_loader.h"
 #include "scenes/json_scene_loader.h"
+#include "scenes/model_loader.h"
 
 namespace prism {
 
@@ -25,9 +26,13 @@ Scene load_scene(const std::filesystem::path& path, const SceneLoadOptions& opti
     scene = load_collada(path, options);
   } else if (ext == ".json") {
     scene = load_json_scene(path);
+  } else if (is_model_extension(ext)) {
+    scene = load_model(path, options);
   } else {
     throw Error(ErrorKind::kInput,
-                "unknown scene format '" + ext + "'; supported: .dae (CS184 COLLADA), .json",
+                "unknown scene format '" + ext +
+                    "'; supported: .dae (CS184 COLLADA), .json (prism), and model files .obj, "
+                    ".ply, .stl, .gltf, .glb, .fbx",
                 where);
   }
   scene.source = path.string();

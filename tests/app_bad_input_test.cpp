@@ -60,6 +60,16 @@ TEST_F(AppBadInput, BadNumber) {
   expect_nothing_written();
 }
 
+TEST_F(AppBadInput, ShortMatrixAboveGeometry) {
+  // Tolerated above a camera (a warning), an error above geometry the homework would lose.
+  const auto scene = dirs_.scene(
+      "short.dae",
+      replaced(kTinyCollada, "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1<", "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0<"));
+  const auto r = render({scene});
+  expect_one_line_error(r, 2, {"short.dae:", "<matrix>", "15 numbers, not 16", "#box-mesh"});
+  expect_nothing_written();
+}
+
 TEST_F(AppBadInput, NonFiniteNumber) {
   for (const char* bad : {"nan", "inf", "1e999"}) {
     SCOPED_TRACE(bad);

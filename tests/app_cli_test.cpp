@@ -41,6 +41,19 @@ TEST(AppCli, InfoReportsCountsAndEveryAccelerator) {
   }
 }
 
+TEST(AppCli, InfoPrintsTheSceneWarnings) {
+  const TestDirs dirs("app_info_warn");
+  const std::string scene =
+      dirs.scene("short.dae", replaced(kTinyCollada, "0 0 0 1</matrix>\n        <instance_camera",
+                                       "0 0 0</matrix>\n        <instance_camera"));
+  const auto r = run_prism({"info", scene, "--accel", "bvh"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(line_count(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("prism: warning: " + scene + ":", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("<matrix>: 15 numbers, not 16"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("triangles        4\n"), std::string::npos) << r.out;
+}
+
 TEST(AppCli, InfoOnCs184BunnyPrintsTriangleCount) {
   PRISM_REQUIRE_CS184(scene, "CBbunny.dae");
   const auto r = run_prism({"info", scene.string(), "--accel", "bvh"});

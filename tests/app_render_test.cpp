@@ -1,17 +1,21 @@
 // `prism render` end to end (core/app/render_command, render_options): the EXR and its
 // provenance, the output formats, the integrator flags as aliases of its parameters, the scene
-// file's settings, thread-count independence and the adaptive sampler's rate picture.
+// file's settings, thread-count independence, the adaptive sampler's rate picture, and the
+// render in memory of the Python module (render_in_memory()) against the file.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include "color/image_output.h"
+#include "core/app/render_driver.h"
 #include "scenes/scene_loader.h"
 #include "tests/support/app_test_helpers.h"
+#include "tests/support/image_compare.h"
 #include "tests/support/test_support.h"
 
 namespace prism::test {
@@ -151,6 +155,82 @@ TEST(AppRender, IntegratorFlagsAreAliasesOfItsParameters) {
   EXPECT_FALSE(std::filesystem::exists(dirs.out / "unknown.exr"));
 }
 
+TEST(AppRender, TwoSidedEmittersFlagIsAnAliasOfItsParameter) {
+  const TestDirs dirs("app_two_sided");
+  const std::string scene = default_scene_path().string();  // a light quad under the ceiling
+  const auto render = [&](const std::string& output, std::vector<std::string> extra) {
+    std::vector<std::string> args = {
+        "render",     scene,   "-r",     "32", "24", "-s", "2",  "-q",
+        "--exr-type", "float", "--seed", "3",  "-t", "2",  "-f", (dirs.out / output).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_prism(args);
+  };
+  for (const auto& [output, extra] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"one.exr", {}},
+           {"flag.exr", {"--two-sided-emitters"}},
+           {"set.exr", {"--set", "path.two_sided_emitters=true"}},
+           {"direct.exr", {"--integrator", "direct", "--two-sided-emitters"}},
+           {"ao.exr", {"--integrator", "ao", "--two-sided-emitters"}}}) {
+    const ProgramResult r = render(output, extra);
+    ASSERT_EQ(r.exit_code, 0) << output << ": " << r.err;
+    EXPECT_EQ(r.err, "") << output;  // ignored by ao, silently, like -l
+  }
+  const std::vector<float> flag = exr_pixels(dirs.out / "flag.exr");
+  EXPECT_TRUE(flag == exr_pixels(dirs.out / "set.exr"));
+  EXPECT_FALSE(flag == exr_pixels(dirs.out / "one.exr")) << "the back of the light lit nothing";
+  expect_one_line_error(
+      render("conflict.exr", {"--two-sided-emitters", "--set", "path.two_sided_emitters=false"}), 2,
+      {"--two-sided-emitters", "path.two_sided_emitters=false"});
+}
+
+TEST(AppRender, AmbientLightIsASkyOnlyWhenAsked) {
+  // kTinyCollada lit by an ambient light: escaping camera rays are black, as in the homework,
+  // unless <integrator>.ambient_visible makes it a sky.
+  const TestDirs dirs("app_ambient");
+  const std::string scene = dirs.scene(
+      "ambient.dae",
+      replaced(kTinyCollada,
+               "<point>\n      <color>1 1 1</color><constant_attenuation>1</constant_attenuation>\n"
+               "      <linear_attenuation>0</linear_attenuation><quadratic_attenuation>0</"
+               "quadratic_attenuation>\n    </point>",
+               "<ambient><color>0.5 0.5 0.5</color></ambient>"));
+  for (const std::string integrator : {"path", "direct"}) {
+    for (const bool visible : {false, true}) {
+      SCOPED_TRACE(integrator + (visible ? " visible" : ""));
+      const auto out = dirs.out / (integrator + (visible ? "_sky.exr" : ".exr"));
+      // The file's camera looks level over the back wall: the top rows are sky.
+      std::vector<std::string> args = {"render",     scene,   "-r",
+                                       "32",         "24",    "-s",
+                                       "2",          "-q",    "--literal-camera",
+                                       "--exr-type", "float", "--integrator",
+                                       integrator,   "-f",    out.string()};
+      if (visible) args.insert(args.end(), {"--set", integrator + ".ambient_visible=true"});
+      const ProgramResult r = run_prism(args);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const ImageFileContents exr = read_image_file(out);
+      const int red = exr.channel("R"), depth = exr.channel("Z");
+      ASSERT_GE(red, 0);
+      ASSERT_GE(depth, 0);
+      int escaped = 0, sky = 0, lit = 0;
+      for (int y = 0; y < exr.image.height; ++y) {
+        for (int x = 0; x < exr.image.width; ++x) {
+          const float v = exr.image.at(x, y, red);
+          if (exr.image.at(x, y, depth) == 0.0f) {
+            ++escaped;
+            sky += v == 0.5f;
+            if (!visible) EXPECT_EQ(v, 0.0f) << x << "," << y;
+          } else {
+            lit += v > 0.0f;
+          }
+        }
+      }
+      EXPECT_GT(escaped, 0);
+      EXPECT_GT(lit, 0);
+      if (visible) EXPECT_GT(sky, 0);
+    }
+  }
+}
+
 TEST(AppRender, SceneFileMaxDepthIsTheIntegratorsUnlessTheCommandLineGivesOne) {
   const TestDirs dirs("app_scene_depth");
   std::ifstream in(default_scene_path());
@@ -176,6 +256,34 @@ TEST(AppRender, SceneFileMaxDepthIsTheIntegratorsUnlessTheCommandLineGivesOne) {
   EXPECT_TRUE(render(shallow, "set.exr", {"--set", "path.max_depth=3"}) == m3);
   EXPECT_EQ(read_image_file(dirs.out / "scene.exr").attribute("prism:max_depth"), "1");
   EXPECT_EQ(read_image_file(dirs.out / "set.exr").attribute("prism:max_depth"), "3");
+}
+
+TEST(AppRender, HomeworkFileDefectsWarnAndRenderAsTheHomework) {
+  // The camera <matrix> short of its last number (as in the homework's CBgems.dae): one
+  // warning line naming file and line, and the image of the intact file.
+  const TestDirs dirs("app_defects");
+  const std::string full = "1 0 0 0 0 0 -1 -3 0 1 0 1 0 0 0 1";
+  const std::string shortened = "1 0 0 0 0 0 -1 -3 0 1 0 1 0 0 0";
+  const std::string intact = dirs.scene("intact.dae", kTinyCollada);
+  const std::string text = replaced(kTinyCollada, full, shortened);
+  const std::string defective = dirs.scene("short.dae", text);
+  std::vector<std::vector<float>> pixels;
+  for (const std::string& scene : {intact, defective}) {
+    const auto out = dirs.out / (std::filesystem::path(scene).stem().string() + ".exr");
+    const auto r = run_prism({"render", scene, "-r", "32", "24", "-s", "2", "-q", "--exr-type",
+                              "float", "-t", "2", "-f", out.string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    if (scene == intact) {
+      EXPECT_EQ(r.err, "");
+    } else {
+      const int line = 1 + int(std::count(text.begin(), text.begin() + text.find(shortened), '\n'));
+      EXPECT_EQ(r.err, "prism: warning: " + defective + ":" + std::to_string(line) +
+                           ": <matrix>: 15 numbers, not 16; the missing ones are read as 0, as "
+                           "the CS184 homework does\n");
+    }
+    pixels.push_back(exr_pixels(out));
+  }
+  EXPECT_TRUE(pixels[0] == pixels[1]) << "the short camera matrix frames differently";
 }
 
 TEST(AppRender, DefaultSceneRendersWithoutSceneArgument) {
@@ -206,6 +314,58 @@ TEST(AppRender, AdaptiveRenderWritesTheRatePictureBesideItsOutput) {
   }
   EXPECT_LT(total, 24.0 * 18 * 64);  // some pixels converged before 64 samples
   std::filesystem::remove_all(dir);
+}
+
+TEST(AppRender, InMemoryRenderHasThePixelsAndProvenanceOfTheFile) {
+  const TestDirs dirs("app_in_memory");
+  const std::string scene = (bundled_scene_dir() / "cornell_spheres.json").string();
+  const auto out = dirs.out / "a.exr";
+  const auto r = run_prism({"render", scene, "-r", "40", "30", "-s", "4", "--seed", "5", "-m", "3",
+                            "--exr-type", "float", "-q", "-f", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ImageFileContents file = read_image_file(out);
+
+  RenderOptions options;
+  options.scene = scene;
+  options.resolution = {40, 30};
+  options.spp = 4;
+  options.seed = "5";
+  options.max_depth = 3;
+  options.quiet = true;
+  int calls = 0;
+  const RenderedFrame frame = render_in_memory(options, [&] { ++calls; });
+  EXPECT_EQ(calls, 3);  // 4 passes of 1 sample: called between them
+  ASSERT_EQ(frame.image.width, 40);
+  ASSERT_EQ(frame.image.height, 30);
+  for (const std::string& channel : frame.image.channel_names) {
+    const std::vector<float> memory = channel_values(frame.image, channel);
+    const std::vector<float> written = channel_values(file.image, channel);
+    ASSERT_EQ(written.size(), memory.size()) << channel;
+    EXPECT_EQ(std::memcmp(written.data(), memory.data(), memory.size() * sizeof(float)), 0)
+        << channel;
+  }
+  // The attributes the file has, with the same values but for times and the command line.
+  for (const auto& [name, value] : frame.metadata) {
+    if (name == "prism:build_ms" || name == "prism:render_ms" ||
+        name == "prism:samples_per_second" || name == "prism:command_line") {
+      EXPECT_NE(file.attribute(name), "") << name;
+      continue;
+    }
+    EXPECT_EQ(value, file.attribute(name)) << name;
+  }
+}
+
+TEST(AppRender, InMemoryRenderStopsWhenTheHookThrows) {
+  RenderOptions options;
+  options.resolution = {16, 12};
+  options.spp = 8;
+  options.quiet = true;
+  int calls = 0;
+  const auto stop = [&] {
+    if (++calls == 2) throw Error(ErrorKind::kInternal, "stopped");
+  };
+  EXPECT_THROW(render_in_memory(options, stop), Error);
+  EXPECT_EQ(calls, 2);
 }
 
 }  // namespace

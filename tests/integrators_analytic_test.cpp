@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "integrators/sampling/warp.h"
 #include "tests/support/integrators_test_scenes.h"
@@ -320,6 +322,182 @@ TEST(IntegratorsAnalytic, RussianRouletteAndMisAreUnbiased) {
   s.seed = 99;
   const Image hemisphere = test::render_scene(scene, "path", params, s);
   test::expect_same_mean(reference, hemisphere, 4.5, "path.mis=false with -H");
+}
+
+/// A 100 x 100 diffuse floor (albedo 0.5) at z = 0 under an ambient light of radiance 0.5
+/// from the upper hemisphere, optionally with a diffuse ball on it, seen from above.
+Scene ambient_floor(bool ball) {
+  Scene scene;
+  scene.source = "ambient floor";
+  const uint32_t floor = test::add_material(scene, MaterialType::kDiffuse, Rgb(0.5f), "floor");
+  const float w = 50.0f;
+  scene.geometry.meshes.push_back(
+      test::quad("floor", {-w, -w, 0}, {w, -w, 0}, {w, w, 0}, {-w, w, 0}, floor));
+  if (ball) {
+    const uint32_t paint = test::add_material(scene, MaterialType::kDiffuse, Rgb(0.8f), "ball");
+    scene.geometry.spheres.push_back(Sphere{Vec3(0.0f, 0.0f, 1.0f), 1.0f, paint});
+  }
+  Light sky;
+  sky.type = LightType::kAmbient;
+  sky.color = Rgb(0.5f);
+  sky.up = Vec3(0.0f, 0.0f, 1.0f);
+  scene.lights.push_back(sky);
+  // Looking down at 32 degrees: every camera ray meets the floor.
+  scene.camera.position = Vec3(0.0f, -4.0f, 3.0f);
+  scene.camera.target = Vec3(0.0f, 0.0f, 0.5f);
+  scene.camera.up = Vec3(0.0f, 0.0f, 1.0f);
+  scene.camera.hfov_deg = scene.camera.vfov_deg = 40.0f;
+  scene.geometry.finalize();
+  scene.validate();
+  return scene;
+}
+
+TEST(IntegratorsAnalytic, AmbientLightLightsTheSameSeenOrNot) {
+  // Whether escaping rays see the ambient light (ambient_visible) changes what they see, not
+  // the light it sheds: hidden, light sampling alone must carry all of it, with MIS or not.
+  TestRender settings;
+  settings.spp = 32;
+  settings.max_depth = 4;
+  struct Variant {
+    const char* integrator;
+    const char* mis;
+    const char* visible;
+  };
+  const std::vector<Variant> variants = {{"path", "true", "false"},   {"path", "false", "false"},
+                                         {"path", "true", "true"},    {"path", "false", "true"},
+                                         {"direct", "true", "false"}, {"direct", "true", "true"}};
+  const auto render = [&](const Scene& scene, const Variant& v, uint64_t seed) {
+    ParamSet params;
+    params.set("path.mis", v.mis);
+    params.set(std::string(v.integrator) + ".ambient_visible", v.visible);
+    TestRender s = settings;
+    s.seed = seed;
+    return test::render_scene(scene, v.integrator, params, s);
+  };
+  // The bare floor: every point sees the whole sky, L = a * 0.5 = 0.25 by every estimator.
+  const Scene floor = ambient_floor(false);
+  uint64_t seed = 20;
+  for (const Variant& v : variants) {
+    const std::string what = std::string(v.integrator) + " mis=" + v.mis + " visible=" + v.visible;
+    const test::ImageMean m = test::image_mean(render(floor, v, ++seed), 0);
+    EXPECT_NEAR(m.mean, 0.25, 0.005) << what;
+    EXPECT_LT(std::abs(m.mean - 0.25), 4.5 * std::sqrt(m.variance) + 1e-6) << what;
+  }
+  // With a ball: shadows and interreflection, the same means in pairs of the same integrator.
+  const Scene ball = ambient_floor(true);
+  const Image path_reference = render(ball, variants[0], 1);
+  const Image direct_reference = render(ball, variants[4], 2);
+  for (size_t i = 1; i < variants.size(); ++i) {
+    if (i == 4) continue;
+    const Variant& v = variants[i];
+    test::expect_same_mean(i < 4 ? path_reference : direct_reference, render(ball, v, 10 + i), 4.5,
+                           std::string(v.integrator) + " mis=" + v.mis + " visible=" + v.visible);
+  }
+}
+
+TEST(IntegratorsAnalytic, CameraRaysThatLeaveTheSceneAreBlackUnlessTheSkyIsVisible) {
+  Scene scene = ambient_floor(false);
+  // Looking at the horizon: the top half of the picture is sky.
+  scene.camera.position = Vec3(0.0f, -5.0f, 1.0f);
+  scene.camera.target = Vec3(0.0f, 0.0f, 1.0f);
+  TestRender settings;
+  settings.width = settings.height = 16;
+  settings.spp = 8;
+  for (const char* integrator : {"path", "direct"}) {
+    for (const bool visible : {false, true}) {
+      SCOPED_TRACE(std::string(integrator) + (visible ? " ambient_visible" : ""));
+      ParamSet params;
+      params.set(std::string(integrator) + ".ambient_visible", visible ? "true" : "false");
+      const Image image = test::render_scene(scene, integrator, params, settings);
+      int sky = 0;
+      for (int y = 0; y < image.height / 2 - 1; ++y) {  // rows whose rays all rise
+        for (int x = 0; x < image.width; ++x) {
+          ASSERT_EQ(image.at(x, y, Film::kDepthChannel), 0.0f) << x << "," << y;
+          for (int c = 0; c < 3; ++c) {
+            ASSERT_EQ(image.at(x, y, c), visible ? 0.5f : 0.0f) << x << "," << y;
+          }
+          ++sky;
+        }
+      }
+      EXPECT_GT(sky, 0);
+      // The floor (bottom row) is lit either way.
+      EXPECT_GT(image.at(image.width / 2, image.height - 1, 0), 0.1f);
+    }
+  }
+}
+
+/// A 1 x 1 emissive quad of radiance 2 at z = 0, its front facing -z, and two small diffuse
+/// cards (albedo 0.5) on its axis at z = -1 (facing it from the front) and z = +1 (facing its
+/// back). A card's radiance is a * le * F, F the form factor from a point at distance h on the
+/// axis of a square of side 2s to the square: 4 x the corner formula
+/// (1 / 2 pi) [X / sqrt(1 + X^2) atan(Y / sqrt(1 + X^2)) + (X <-> Y)], X = Y = s / h.
+Scene emitter_and_cards() {
+  Scene scene;
+  scene.source = "emitter and cards";
+  const uint32_t card = test::add_material(scene, MaterialType::kDiffuse, Rgb(0.5f), "card");
+  const uint32_t lamp = test::add_material(scene, MaterialType::kEmission, Rgb(2.0f), "lamp");
+  const float s = 0.5f, c = 0.01f;
+  auto& meshes = scene.geometry.meshes;
+  meshes.push_back(test::quad("lamp", {-s, -s, 0}, {-s, s, 0}, {s, s, 0}, {s, -s, 0}, lamp));
+  meshes.push_back(test::quad("below", {-c, -c, -1}, {c, -c, -1}, {c, c, -1}, {-c, c, -1}, card));
+  meshes.push_back(test::quad("above", {-c, -c, 1}, {-c, c, 1}, {c, c, 1}, {c, -c, 1}, card));
+  scene.camera.up = Vec3(0.0f, 1.0f, 0.0f);
+  scene.camera.hfov_deg = scene.camera.vfov_deg = 16.0f;
+  scene.geometry.finalize();
+  scene.validate();
+  return scene;
+}
+
+/// `scene` seen from `from` looking at `at`.
+Scene looking(Scene scene, const Vec3& from, const Vec3& at) {
+  scene.camera.position = from;
+  scene.camera.target = at;
+  return scene;
+}
+
+TEST(IntegratorsAnalytic, TwoSidedEmittersLightBothSidesAlike) {
+  const Scene scene = emitter_and_cards();
+  const double x = 0.5, root = std::sqrt(1.0 + x * x);
+  const double f = 4.0 * (2.0 * x / root * std::atan(x / root)) / (2.0 * kPi);
+  const double expected = 0.5 * 2.0 * f;
+  TestRender settings;
+  settings.width = settings.height = 8;
+  settings.spp = 64;
+  settings.max_depth = 3;
+  struct Variant {
+    const char* integrator;
+    const char* mis;
+    bool two_sided;
+  };
+  uint64_t seed = 40;
+  for (const Variant v : {Variant{"direct", "true", false}, Variant{"direct", "true", true},
+                          Variant{"path", "true", false}, Variant{"path", "true", true},
+                          Variant{"path", "false", true}}) {
+    const std::string what =
+        std::string(v.integrator) + " mis=" + v.mis + (v.two_sided ? " two-sided" : "");
+    ParamSet params;
+    params.set("path.mis", v.mis);
+    params.set(std::string(v.integrator) + ".two_sided_emitters", v.two_sided ? "true" : "false");
+    TestRender s = settings;
+    s.seed = ++seed;
+    const auto mean = [&](const Vec3& from, const Vec3& at) {
+      return test::image_mean(test::render_scene(looking(scene, from, at), v.integrator, params, s),
+                              0);
+    };
+    // The card in front of the emitter: the same either way.
+    const test::ImageMean front = mean({0, 0, -0.95f}, {0, 0, -1});
+    EXPECT_NEAR(front.mean, expected, 0.01 * expected) << what;
+    // The card behind it: dark unless the emitter is two-sided, then the same.
+    const test::ImageMean back = mean({0, 0, 0.95f}, {0, 0, 1});
+    if (v.two_sided) {
+      EXPECT_NEAR(back.mean, expected, 0.01 * expected) << what;
+    } else {
+      EXPECT_EQ(back.mean, 0.0) << what;
+    }
+    // The emitter itself, from the front and from behind: exactly its radiance, or black.
+    EXPECT_EQ(mean({0, 0, -0.5f}, {0, 0, 0}).mean, 2.0) << what;
+    EXPECT_EQ(mean({0, 0, 0.5f}, {0, 0, 0}).mean, v.two_sided ? 2.0 : 0.0) << what;
+  }
 }
 
 }  // namespace

@@ -57,7 +57,7 @@ TriangleMesh tilted_quad() {
 
 TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
   const TriangleMesh mesh = tilted_quad();
-  const MeshLight light(mesh, Rgb(2.0f));
+  const MeshLight light(mesh, Rgb(2.0f), false);
   for (const Vec3& p : {Vec3(0.0f), Vec3(1.5f, -0.5f, 0.5f)}) {
     const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
       const auto s = light.sample_li(p, u);
@@ -88,7 +88,7 @@ TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
 
 TEST(IntegratorsLights, SphereLightSamplingMatchesPdf) {
   const Sphere sphere{Vec3(0.3f, 0.2f, 1.5f), 0.6f, 0};
-  const SphereLight light(sphere, Rgb(1.0f));
+  const SphereLight light(sphere, Rgb(1.0f), false);
   const Vec3 p(0.0f);
   const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
     const auto s = light.sample_li(p, u);
@@ -125,7 +125,7 @@ TEST(IntegratorsLights, ParallelogramLightSamplingIsUniformInArea) {
   l.direction = glm::normalize(Vec3(0.2f, 0.0f, -1.0f));
   l.edge_u = Vec3(0.8f, 0.0f, 0.16f);
   l.edge_v = Vec3(0.0f, 0.6f, 0.0f);
-  const ParallelogramLight light(l);
+  const ParallelogramLight light(l, false);
   const Vec3 p(0.0f);
   const Vec3 corner = l.position - 0.5f * (l.edge_u + l.edge_v);
   const float area = glm::length(glm::cross(l.edge_u, l.edge_v));
@@ -159,7 +159,9 @@ TEST(IntegratorsLights, AmbientLightSamplingMatchesPdf) {
   l.type = LightType::kAmbient;
   l.color = Rgb(0.5f);
   l.up = glm::normalize(Vec3(0.3f, 0.1f, 1.0f));
-  const AmbientLight light(l, 1.0f);
+  const AmbientLight light(l, 1.0f, true);
+  EXPECT_EQ(light.kind(), LightKind::kInfinite);
+  EXPECT_TRUE(light.is_hittable());
   const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
     const auto s = light.sample_li(Vec3(0.0f), u);
     if (!s) return std::nullopt;
@@ -171,6 +173,102 @@ TEST(IntegratorsLights, AmbientLightSamplingMatchesPdf) {
   EXPECT_GT(r.p_value, kSignificance) << r.summary();
   EXPECT_EQ(light.le_escaped(l.up), l.color);
   EXPECT_EQ(light.le_escaped(-l.up), Rgb(0.0f));
+  // Hidden (the default in a LightSet): light sampling alone finds it, the same way.
+  const AmbientLight hidden(l, 1.0f, false);
+  EXPECT_EQ(hidden.kind(), LightKind::kHiddenInfinite);
+  EXPECT_FALSE(hidden.is_hittable());
+  EXPECT_FALSE(hidden.is_delta());
+  const auto a = light.sample_li(Vec3(0.0f), {0.3f, 0.7f});
+  const auto b = hidden.sample_li(Vec3(0.0f), {0.3f, 0.7f});
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->wi, b->wi);
+  EXPECT_EQ(a->pdf, b->pdf);
+  EXPECT_EQ(a->li, b->li);
+}
+
+TEST(IntegratorsLights, TwoSidedEmittersSampleBothSides) {
+  // From behind the tilted quad (its front faces down-ish): nothing one-sided, the same
+  // density as seen from the front when two-sided, and the same radiance on both faces.
+  const TriangleMesh mesh = tilted_quad();
+  const MeshLight one_sided(mesh, Rgb(2.0f), false);
+  const MeshLight light(mesh, Rgb(2.0f), true);
+  EXPECT_EQ(light.power(), 2.0f * one_sided.power());
+  const Vec3 behind(0.2f, 0.1f, 4.0f);
+  EXPECT_FALSE(one_sided.sample_li(behind, {0.5f, 0.5f}).has_value());
+  const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+    const auto s = light.sample_li(behind, u);
+    if (!s) return std::nullopt;
+    EXPECT_EQ(s->li, Rgb(2.0f));
+    return s->wi;
+  };
+  SurfaceInteraction back;  // a point of the quad seen from above: the normal as surface_at
+  const DirectionPdf pdf = [&](const Vec3& w) -> double {
+    for (const glm::uvec3& t : mesh.triangles) {
+      const auto hit =
+          hit_triangle(behind, w, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
+      if (!hit) continue;
+      SurfaceInteraction si;
+      si.position = behind + *hit * w;
+      si.geometric_normal = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                                      mesh.positions[t.z] - mesh.positions[t.x]));
+      back = si;
+      return light.pdf_li(behind, si);
+    }
+    return 0.0;
+  };
+  DirectionalChiSquareOptions options;
+  options.theta_bins = 40;
+  options.phi_bins = 80;
+  const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
+  EXPECT_EQ(r.impossible_observations, 0u);
+  EXPECT_GT(r.p_value, kSignificance) << r.summary();
+  EXPECT_EQ(one_sided.pdf_li(behind, back), 0.0f);
+  EXPECT_GT(light.pdf_li(behind, back), 0.0f);
+  const Vec3 up(0.0f, 0.0f, 1.0f);  // leaving the quad's back
+  EXPECT_EQ(one_sided.le(back, up), Rgb(0.0f));
+  EXPECT_EQ(light.le(back, up), Rgb(2.0f));
+  EXPECT_EQ(light.le(back, -up), Rgb(2.0f));
+
+  // A two-sided sphere lights its inside: every direction from within meets it once.
+  const Sphere sphere{Vec3(0.3f, 0.2f, 1.5f), 0.6f, 0};
+  const SphereLight ball(sphere, Rgb(1.0f), true);
+  const Vec3 inside = sphere.center + Vec3(0.1f, -0.2f, 0.15f);
+  EXPECT_FALSE(SphereLight(sphere, Rgb(1.0f), false).sample_li(inside, {0.4f, 0.6f}));
+  const DirectionSampler ball_sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+    const auto s = ball.sample_li(inside, u);
+    if (!s) return std::nullopt;
+    return s->wi;
+  };
+  const DirectionPdf ball_pdf = [&](const Vec3& w) -> double {
+    const Vec3 oc = inside - sphere.center;
+    const float b = glm::dot(oc, w);
+    const float c = glm::dot(oc, oc) - sphere.radius * sphere.radius;
+    const float t = -b + std::sqrt(b * b - c);  // c < 0 inside: one root ahead
+    SurfaceInteraction si;
+    si.position = inside + t * w;
+    si.geometric_normal = glm::normalize(si.position - sphere.center);
+    return ball.pdf_li(inside, si);
+  };
+  const ChiSquareResult rb = directional_chi_square(ball_sampler, ball_pdf);
+  EXPECT_EQ(rb.impossible_observations, 0u);
+  EXPECT_GT(rb.p_value, kSignificance) << rb.summary();
+
+  // The CGL area light: seen from behind only when two-sided, with the same density.
+  Light l;
+  l.type = LightType::kArea;
+  l.color = Rgb(5.0f);
+  l.position = Vec3(0.0f, 0.0f, 1.0f);
+  l.direction = Vec3(0.0f, 0.0f, -1.0f);
+  l.edge_u = Vec3(0.8f, 0.0f, 0.0f);
+  l.edge_v = Vec3(0.0f, 0.6f, 0.0f);
+  const ParallelogramLight front_only(l, false), both(l, true);
+  EXPECT_EQ(both.power(), 2.0f * front_only.power());
+  EXPECT_FALSE(front_only.sample_li(Vec3(0.0f, 0.0f, 2.0f), {0.3f, 0.6f}));
+  const auto below = both.sample_li(Vec3(0.0f), {0.3f, 0.6f});
+  const auto above = both.sample_li(Vec3(0.0f, 0.0f, 2.0f), {0.3f, 0.6f});
+  ASSERT_TRUE(below && above);
+  EXPECT_FLOAT_EQ(below->pdf, above->pdf);
+  EXPECT_EQ(above->li, l.color);
 }
 
 /// A small lat-long map: a dim gradient, a bright spot, and a black band.
@@ -299,7 +397,7 @@ TEST(IntegratorsLights, LightSetCountsEmissiveMeshesOnceAndChoosesByPower) {
   const LightSet set(scene);
   // The point light, the emissive mesh and the emissive sphere; not the duplicate proxy.
   ASSERT_EQ(set.size(), 3u);
-  int kinds[4] = {0, 0, 0, 0};
+  int kinds[5] = {0, 0, 0, 0, 0};
   for (const auto& l : set.lights()) ++kinds[int(l->kind())];
   EXPECT_EQ(kinds[int(LightKind::kDelta)], 1);
   EXPECT_EQ(kinds[int(LightKind::kSurface)], 2);
@@ -369,6 +467,33 @@ TEST(IntegratorsLights, LightSetLightsTheSceneWithItsEnvironmentMap) {
   const LightSet turned(scene);
   EXPECT_EQ(turned.le_escaped(Vec3(0.0f, -1.0f, 0.0f)), red);
   EXPECT_EQ(turned.le_escaped(Vec3(0.0f, 0.0f, 1.0f) * 0.6f + Vec3(0.0f, 0.8f, 0.0f)), blue);
+}
+
+TEST(IntegratorsLights, LightSetHidesAmbientLightsFromEscapingRaysByDefault) {
+  Scene scene = scene_with_emitters();
+  Light sky;
+  sky.type = LightType::kAmbient;
+  sky.color = Rgb(0.5f);
+  sky.up = Vec3(0.0f, 0.0f, 1.0f);
+  scene.lights.push_back(sky);
+  const Vec3 up(0.0f, 0.0f, 1.0f);
+  const LightSet hidden(scene);
+  ASSERT_EQ(hidden.size(), 4u);  // still a light that sample() chooses
+  EXPECT_TRUE(hidden.infinite_lights().empty());
+  EXPECT_EQ(hidden.le_escaped(up), Rgb(0.0f));
+  const LightSet visible(scene, LightOptions{.ambient_visible = true});
+  ASSERT_EQ(visible.infinite_lights().size(), 1u);
+  EXPECT_EQ(visible.le_escaped(up), sky.color);
+  EXPECT_EQ(visible.le_escaped(-up), Rgb(0.0f));
+  for (size_t i = 0; i < hidden.size(); ++i) EXPECT_EQ(hidden.pmf(i), visible.pmf(i));
+  // Environment maps stay visible whatever the option.
+  scene.environment = SceneEnvironment{};
+  scene.environment->image.width = 2;
+  scene.environment->image.height = 1;
+  scene.environment->image.channel_names = {"R", "G", "B"};
+  scene.environment->image.pixels.assign(6, 1.0f);
+  EXPECT_EQ(LightSet(scene).infinite_lights().size(), 1u);
+  EXPECT_EQ(LightSet(scene).le_escaped(-up), Rgb(1.0f));
 }
 
 TEST(IntegratorsLights, AreaLightWithoutDuplicateIsKept) {

@@ -27,6 +27,7 @@ namespace prism {
 namespace {
 
 using test::collada::kBase;
+using test::collada::line_of;
 using test::collada::load_text;
 using test::collada::read_file;
 using test::collada::replaced;
@@ -134,6 +135,7 @@ TEST(ScenesCollada, EverySharedFileMatchesItsXml) {
     }
     for (const Light& l : scene.lights) EXPECT_EQ(l.up, Vec3(0, 0, 1));
     EXPECT_EQ(scene.camera.up, Vec3(0, 0, 1));
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
   }
 }
 
@@ -485,6 +487,159 @@ TEST(ScenesCollada, LiteralCameraOption) {
   expect_near(scene.camera.position, {0, -10, 3});
   expect_near(glm::normalize(scene.camera.target - scene.camera.position), {0, 1, 0});
   expect_near(scene.camera.up, {0, 0, 1});
+}
+
+// ---- Defects the homework tolerates: one warning each, then read as the homework reads them.
+// (Real errors are in scenes_collada_errors_test.cpp.) ----
+
+// kBase with a perspective camera whose node has `matrix` as its <matrix> text.
+std::string with_camera_matrix(const std::string& matrix) {
+  std::string text = replaced(kBase, "<library_effects>",
+                              "<library_cameras><camera id=\"cam\"><optics><technique_common>"
+                              "<perspective><xfov>49.13434</xfov><aspect_ratio>1.777778</"
+                              "aspect_ratio></perspective></technique_common></optics></camera>"
+                              "</library_cameras>\n<library_effects>");
+  return replaced(text, "</visual_scene>",
+                  "<node id=\"cam-node\">\n<matrix>" + matrix +
+                      "</matrix>\n<instance_camera url=\"#cam\"/></node>\n</visual_scene>");
+}
+
+// Expects exactly one warning, at `line` of the loaded file, ending with `tail`.
+void expect_one_warning(const Scene& scene, int line, const std::string& tail) {
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  const std::string& w = scene.warnings[0];
+  EXPECT_NE(w.find("scene.dae:" + std::to_string(line) + ": "), std::string::npos) << w;
+  EXPECT_EQ(w.find('\n'), std::string::npos) << w;
+  ASSERT_GE(w.size(), tail.size()) << w;
+  EXPECT_EQ(w.substr(w.size() - tail.size()), tail) << w;
+}
+
+void expect_same_camera(const Camera& a, const Camera& b) {
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_EQ(a.target, b.target);
+  EXPECT_EQ(a.up, b.up);
+  EXPECT_EQ(a.hfov_deg, b.hfov_deg);
+  EXPECT_EQ(a.vfov_deg, b.vfov_deg);
+}
+
+TEST(ScenesCollada, ShortCameraMatrixFramesAsTheHomework) {
+  // The CBempty camera, and the same matrix with one number lost as in the homework's
+  // CBgems.dae: its 15 numbers fill rows 0-2 and three of row 3. The homework frames with
+  // c = normalize(xyz of M (0, 0, -1, 1)), reading only the top three rows: (0, 2, 0) from both
+  // (dividing by the short matrix's w = -1 would turn the camera round).
+  const std::string full = "-1 0 0 0 0 0 1 3 0 1 0 0 0 0 0 1";
+  const std::string gems = "-1 0 0 0 0 0 1 3 0 0 0 0 0 0 1";
+  const Scene reference = load_text(with_camera_matrix(full));
+  EXPECT_TRUE(reference.warnings.empty());
+  const std::string text = with_camera_matrix(gems);
+  const Scene scene = load_text(text);
+  expect_one_warning(scene, line_of(text, gems),
+                     "<matrix>: 15 numbers, not 16; the missing ones are read as 0, as the CS184 "
+                     "homework does");
+  expect_same_camera(scene.camera, reference.camera);
+  expect_near(glm::normalize(scene.camera.position - scene.camera.target), {0, 1, 0});
+  // The same numbers padded with zeros, as ../shared/peers/cycles_render.py frames them.
+  const Scene padded = load_text(with_camera_matrix(gems + " 0"));
+  EXPECT_TRUE(padded.warnings.empty());
+  expect_same_camera(scene.camera, padded.camera);
+  // A matrix short of only its final 1 frames like the full one too.
+  expect_same_camera(load_text(with_camera_matrix("-1 0 0 0 0 0 1 3 0 1 0 0 0 0 0")).camera,
+                     reference.camera);
+  // The file's camera taken literally has no up axis left (row 2 is zero): an error there.
+  SceneLoadOptions literal;
+  literal.literal_camera = true;
+  EXPECT_THROW(load_text(text, literal), Error);
+}
+
+TEST(ScenesCollada, ShortMatrixAboveLightsReadsTheTopRows) {
+  // Lights, like cameras, come from the top three rows in the homework.
+  const std::string lights =
+      "<library_lights><light id=\"l\"><technique_common><point><color>1 1 1</color>"
+      "</point></technique_common></light></library_lights>\n<library_geometries>";
+  const std::string base = replaced(kBase, "<library_geometries>", lights);
+  const auto with_light_matrix = [&](const std::string& matrix) {
+    return replaced(base, "</visual_scene>",
+                    "<node id=\"lamp\"><node><matrix>" + matrix +
+                        "</matrix><instance_light url=\"#l\"/></node></node>\n</visual_scene>");
+  };
+  const Scene full = load_text(with_light_matrix("1 0 0 1 0 1 0 2 0 0 1 3 0 0 0 1"));
+  const std::string text = with_light_matrix("1 0 0 1 0 1 0 2 0 0 1 3 0 0 0");
+  const Scene scene = load_text(text);
+  expect_one_warning(scene, line_of(text, "1 0 0 1 0 1 0 2 0 0 1 3 0 0 0<"),
+                     "15 numbers, not 16; the missing ones are read as 0, as the CS184 homework "
+                     "does");
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].position, Vec3(1, 2, 3));
+  EXPECT_EQ(scene.lights[0].position, full.lights[0].position);
+  EXPECT_EQ(scene.lights[0].direction, full.lights[0].direction);
+}
+
+TEST(ScenesCollada, LongMatrixReadsTheFirstSixteen) {
+  const std::string node = "<node id=\"n\">";
+  const Scene plain =
+      load_text(replaced(kBase, node, node + "<matrix>1 0 0 5 0 1 0 0 0 0 1 0 0 0 0 1</matrix>"));
+  const std::string text =
+      replaced(kBase, node, node + "\n<matrix>1 0 0 5 0 1 0 0 0 0 1 0 0 0 0 1 7 7</matrix>");
+  const Scene scene = load_text(text);
+  expect_one_warning(scene, line_of(text, "7 7</matrix>"),
+                     "<matrix>: 18 numbers, not 16; the numbers after the 16th are ignored, as the "
+                     "CS184 homework does");
+  EXPECT_EQ(scene.geometry.meshes[0].positions, plain.geometry.meshes[0].positions);
+  EXPECT_EQ(scene.geometry.meshes[0].positions[0], Vec3(5, 0, 0));
+}
+
+TEST(ScenesCollada, FloatArrayCountDisagreeingWithItsNumbers) {
+  const Scene plain = load_text(kBase);
+  // More declared than present: the homework pads with copies of the last number, which no
+  // accessor or index here uses; the numbers present are read. A huge count allocates nothing.
+  for (const std::string count : {"12", "999999999999"}) {
+    SCOPED_TRACE(count);
+    const std::string text = replaced(kBase, "count=\"9\"", "count=\"" + count + "\"");
+    const Scene scene = load_text(text);
+    expect_one_warning(scene, line_of(text, "tri-pos-array\""),
+                       "<float_array id=\"tri-pos-array\">: count=\"" + count +
+                           "\" but the element holds 9 numbers; the 9 present are read, as the "
+                           "CS184 homework reads them, and nothing may use more");
+    EXPECT_EQ(scene.geometry.meshes[0].positions, plain.geometry.meshes[0].positions);
+  }
+  // Fewer declared than present: the homework reads only `count` numbers.
+  const std::string text =
+      replaced(kBase, "0 0 0 1 0 0 0 1 0</float_array>", "0 0 0 1 0 0 0 1 0 7 7 7</float_array>");
+  const Scene scene = load_text(text);
+  expect_one_warning(scene, line_of(text, "tri-pos-array\""),
+                     "count=\"9\" but the element holds 12 numbers; only the first 9 are read, as "
+                     "the CS184 homework does");
+  EXPECT_EQ(scene.geometry.meshes[0].positions, plain.geometry.meshes[0].positions);
+  // ... so an accessor that needs the numbers beyond the count reads past the end: an error
+  // (the homework would read outside its array).
+  EXPECT_THROW(
+      load_text(replaced(replaced(text, "count=\"3\" stride=\"3\"", "count=\"4\" stride=\"3\""),
+                         "<p>0 1 2</p>", "<p>0 1 3</p>")),
+      Error);
+}
+
+TEST(ScenesCollada, ColourWithMissingOrExtraNumbers) {
+  const std::string colour = "0.8 0.1 0.1 1";
+  struct Case {
+    std::string numbers;
+    Rgb expected;
+    std::string tail;
+  };
+  const std::vector<Case> cases = {
+      {"0.8 0.1", Rgb(0.8f, 0.1f, 0.0f),
+       "<color>: 2 numbers, not 3; the missing ones are read as 0, as the CS184 homework does"},
+      {"0.8", Rgb(0.8f, 0.0f, 0.0f),
+       "<color>: 1 number, not 3; the missing ones are read as 0, as the CS184 homework does"},
+      {"0.8 0.1 0.1 1 0.5", Rgb(0.8f, 0.1f, 0.1f),
+       "<color>: 5 numbers, not 3 or 4; only the first 3 are read, as the CS184 homework does"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.numbers);
+    const std::string text = replaced(kBase, colour, c.numbers);
+    const Scene scene = load_text(text);
+    expect_one_warning(scene, line_of(text, "<color>"), c.tail);
+    EXPECT_EQ(scene.materials[scene.geometry.meshes[0].material_id].reflectance, c.expected);
+  }
 }
 
 // ---- Bad input: one test per class; each names the element or id and gives its line. ----

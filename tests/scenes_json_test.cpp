@@ -398,6 +398,90 @@ TEST_F(ScenesJson, HostileInputFailsCleanly) {
   expect_error(s, "meshes[0].generate.seed", ">= 0");
 }
 
+TEST_F(ScenesJson, MaterialsNameTextures) {
+  test::write_text(dir_ / "wood.png", "the loader only checks that the file exists");
+  fs::create_directories(dir_ / "maps");
+  test::write_text(dir_ / "maps" / "screen.png", "-");
+  json s = base_scene();
+  s["materials"] = json::parse(R"([
+    {"name": "white", "type": "diffuse",
+     "reflectance": {"texture": "wood.png", "color_space": "sRGB - Texture",
+                     "scale": [0.9, 0.8, 0.7]}},
+    {"name": "screen", "type": "emission",
+     "radiance": {"texture": "maps/screen.png", "scale": 5}},
+    {"name": "gold", "type": "microfacet", "alpha": 0.2, "reflectance": {"texture": "wood.png"}},
+    {"name": "steel", "type": "microfacet", "reflectance": [0.6, 0.6, 0.6]},
+    {"name": "chrome", "type": "mirror",
+     "reflectance": {"texture": "wood.png", "color_space": "sRGB - Texture"}}
+  ])");
+  const Scene scene = load(s.dump(2));
+  ASSERT_EQ(scene.materials.size(), 5u);
+  ASSERT_EQ(scene.textures.size(), 3u);  // wood.png twice with the same space is one texture
+  const Material& white = scene.materials[0];
+  EXPECT_EQ(white.reflectance, Rgb(0.9f, 0.8f, 0.7f));
+  EXPECT_EQ(white.reflectance_texture, 0u);
+  EXPECT_EQ(scene.textures[0].file, dir_ / "wood.png");
+  EXPECT_EQ(scene.textures[0].name, "wood.png");
+  EXPECT_EQ(scene.textures[0].color_space, "sRGB - Texture");
+  EXPECT_EQ(scene.textures[0].origin.element, "materials[0].reflectance.texture");
+  EXPECT_GT(scene.textures[0].origin.line, 0);
+  EXPECT_EQ(scene.materials[1].radiance, Rgb(5.0f));
+  EXPECT_EQ(scene.materials[1].radiance_texture, 1u);
+  EXPECT_EQ(scene.textures[1].file, dir_ / "maps" / "screen.png");
+  EXPECT_EQ(scene.materials[2].reflectance_texture, 2u);
+  EXPECT_EQ(scene.materials[2].reflectance, Rgb(1.0f));
+  EXPECT_TRUE(scene.textures[2].color_space.empty());
+  const Material& steel = scene.materials[3];
+  EXPECT_EQ(steel.reflectance_texture, kNoTexture);
+  const float n = steel.eta.r, k = steel.k.r;
+  EXPECT_NEAR(((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k), 0.6f, 1e-5f);
+  EXPECT_EQ(scene.materials[4].reflectance_texture, 0u);
+}
+
+TEST_F(ScenesJson, TextureMistakesAreErrors) {
+  test::write_text(dir_ / "wood.png", "-");
+  json s = base_scene();
+  s["materials"][0]["reflectance"] = {{"texture", "nothere.png"}};
+  expect_error(s, "materials[0].reflectance.texture", "texture file 'nothere.png' not found");
+  s["materials"][0]["reflectance"] = {{"texture", "wood.png"}, {"colour_space", "sRGB"}};
+  expect_error(s, "materials[0].reflectance.colour_space", "did you mean 'color_space'");
+  s["materials"][0]["reflectance"] = {{"texture", "wood.png"}, {"scale", 2}};
+  expect_error(s, "materials[0].reflectance.scale", "must be in [0, 1]");
+  s["materials"][0]["reflectance"] = {{"texture", "wood.png"}, {"color_space", ""}};
+  expect_error(s, "materials[0].reflectance.color_space", "empty");
+  s["materials"][0]["reflectance"] = {{"scale", 0.5}};
+  expect_error(s, "materials[0].reflectance", "missing required field 'texture'");
+  s["materials"][0] = {
+      {"name", "white"}, {"type", "microfacet"}, {"reflectance", 0.5}, {"eta", 1}, {"k", 1}};
+  expect_error(s, "materials[0].reflectance", "not both");
+  s["materials"][0] = {
+      {"name", "white"}, {"type", "glass"}, {"transmittance", {{"texture", "wood.png"}}}};
+  expect_error(s, "materials[0].transmittance", "expected a colour");
+}
+
+// docs/SCENE_FORMAT.md's textures example must stay loadable materials.
+TEST_F(ScenesJson, DocumentedTexturesExampleLoads) {
+  std::ifstream in(fs::path(PRISM_SOURCE_DIR) / "docs" / "SCENE_FORMAT.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string text = doc.str();
+  const size_t section = text.find("## Textures");
+  ASSERT_NE(section, std::string::npos);
+  const size_t begin = text.find("```json\n", section);
+  const size_t end = text.find("```\n", begin + 8);
+  ASSERT_NE(begin, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  fs::create_directories(dir_ / "textures");
+  for (const char* name : {"wood.png", "brass.jpg", "screen.exr"}) {
+    test::write_text(dir_ / "textures" / name, "-");
+  }
+  const Scene scene =
+      load("{\"camera\": {\"position\": [0, 0, 5], \"target\": [0, 0, 0], \"fov\": 45},\n" +
+           text.substr(begin + 8, end - begin - 8) + "}");
+  EXPECT_EQ(scene.materials.size(), 3u);
+  EXPECT_EQ(scene.textures.size(), 3u);
+}
+
 // docs/SCENE_FORMAT.md's complete example must stay a loadable scene.
 TEST_F(ScenesJson, DocumentedExampleLoads) {
   std::ifstream in(fs::path(PRISM_SOURCE_DIR) / "docs" / "SCENE_FORMAT.md");

@@ -42,13 +42,9 @@ bool intersect_block_lane(const WatertightRay& ray, const TriangleBlock& block, 
   return true;
 }
 
-bool block_lane_hit_parameters(const WatertightRay& ray, const TriangleBlock& block, int lane,
-                               PrimitiveHit& hit) {
+bool block_lane_is_degenerate(const TriangleBlock& block, int lane) {
   const LaneVertices l = lane_vertices(block, lane);
-  const std::optional<PrimitiveHit> h = triangle_hit_parameters(ray, l.v[0], l.v[1], l.v[2]);
-  if (!h) return false;
-  hit = *h;
-  return true;
+  return is_degenerate_triangle(l.v[0], l.v[1], l.v[2]);
 }
 
 }  // namespace prism

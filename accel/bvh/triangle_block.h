@@ -30,10 +30,7 @@ void fill_triangle_block(const SceneGeometry& geometry, const PrimRef* refs, int
 bool intersect_block_lane(const WatertightRay& ray, const TriangleBlock& block, int lane,
                           PrimitiveHit& hit);
 
-/// triangle_hit_parameters() on one lane of a block: t, u, v of a lane whose hit the SIMD
-/// kernel decided (same float operations as intersect_triangle()), in double precision; false
-/// for a degenerate triangle or t outside [ray.tmin, ray.tmax].
-bool block_lane_hit_parameters(const WatertightRay& ray, const TriangleBlock& block, int lane,
-                               PrimitiveHit& hit);
+/// is_degenerate_triangle() on one lane of a block.
+bool block_lane_is_degenerate(const TriangleBlock& block, int lane);
 
 }  // namespace prism

@@ -182,11 +182,24 @@ struct TriangleRay {
         tmin(_mm256_set1_ps(q.tmin)),
         kx(q.kx),
         ky(q.ky),
-        kz(q.kz),
-        ray(r) {}
+        kz(q.kz) {
+    // The scalar test's constants, the same values setup_ray() computed.
+    watertight.origin = Vec3(q.org[0], q.org[1], q.org[2]);
+    watertight.kx = q.kx;
+    watertight.ky = q.ky;
+    watertight.kz = q.kz;
+    watertight.shear_x = q.shear_x;
+    watertight.shear_y = q.shear_y;
+    watertight.shear_z = q.shear_z;
+    watertight.tmin = q.tmin;
+    watertight.tmax = q.tmax;
+    (void)r;
+  }
   __m256 ox, oy, oz, sx, sy, sz, tmin;
   int kx, ky, kz;
-  const Ray& ray;  ///< for the scalar test of lanes with a zero edge function
+  /// For the scalar code: t, u, v of the lanes hit, and the whole test of lanes with a zero
+  /// edge function.
+  WatertightRay watertight;
 };
 
 // One template serves one block (4 lanes, __m128) and two blocks at once (8 lanes, __m256);
@@ -221,6 +234,10 @@ template <int kPredicate>
 inline __m256 vcmp(__m256 a, __m256 b) {
   return _mm256_cmp_ps(a, b, kPredicate);
 }
+
+/// Safety factor of the float t's error bound in intersect_triangles(), in units of the bound's
+/// leading term: 16 float epsilons where the analysis needs about 5.
+inline constexpr float kTErrorScale = 16.0f / (1 << 24);
 
 template <typename V>
 struct Lanes;
@@ -299,7 +316,31 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   // Most blocks a ray reaches miss all their triangles: stop before t and the division.
   if (vmask(outside) == kAll && special_mask == 0) return false;
   const V det = vadd(vadd(e0, e1), e2);
-  const V ok = vandnot(vor(L::sign_mask(outside), special), vcmp<_CMP_NEQ_UQ>(det, zero));
+  // A float t with a bound on how far it can be from the double-precision t the scalar code
+  // computes from the same sheared vertices: a lane whose t cannot be in [tmin, tmax] needs no
+  // scalar test. The bound only filters, it decides nothing, so the bits stay brute force's.
+  // e_i is off by at most 2 eps (|x y| + |x' y'|) =: 2 eps E_i, so T = sum e_i z_i by about
+  // eps sum E_i |z_i| and det by eps sum E_i, each plus a few eps of itself; t = T s / det.
+  const V sign = L::set1(-0.0f);
+  const V sz = L::narrow(ray.sz);
+  const V t_num = vadd(vadd(vmul(e0, az), vmul(e1, bz)), vmul(e2, cz));
+  const V inv_det = vdiv(L::set1(1.0f), det);
+  const V t = vmul(vmul(t_num, sz), inv_det);
+  const auto vabs = [&](V x) { return vandnot(sign, x); };
+  const V big0 = vadd(vabs(vmul(bx, cy)), vabs(vmul(by, cx)));
+  const V big1 = vadd(vabs(vmul(cx, ay)), vabs(vmul(cy, ax)));
+  const V big2 = vadd(vabs(vmul(ax, by)), vabs(vmul(ay, bx)));
+  const V num_error = vadd(vadd(vmul(big0, vabs(az)), vmul(big1, vabs(bz))), vmul(big2, vabs(cz)));
+  const V det_error = vadd(vadd(big0, big1), big2);
+  const V t_error = vadd(
+      vmul(L::set1(kTErrorScale), vmul(vadd(num_error, vmul(vabs(vmul(t_num, inv_det)), det_error)),
+                                       vabs(vmul(sz, inv_det)))),
+      vmul(L::set1(kTErrorScale), vabs(t)));
+  // NaN t (det 0, infinities) compares false both ways: such lanes go to the scalar test.
+  const V out_of_range = vor(vcmp<_CMP_GT_OQ>(vsub(t, t_error), L::set1(tmax)),
+                             vcmp<_CMP_LT_OQ>(vadd(t, t_error), L::narrow(ray.tmin)));
+  const V ok =
+      vandnot(vor(vor(L::sign_mask(outside), special), out_of_range), vcmp<_CMP_NEQ_UQ>(det, zero));
   const int mask = vmask(ok);
   if (mask == 0 && special_mask == 0) return false;
   auto geom = [&](int lane) { return blocks[lane >> 2]->geom_id[lane & 3]; };
@@ -307,18 +348,25 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   // The lanes the ray passes through take t, u, v from the scalar code in double precision
   // (triangle_hit_parameters()), as intersect_triangle() does; lanes with a zero edge function
   // take the whole scalar test. Either way the bits are brute force's.
-  WatertightRay w(ray.ray);
+  WatertightRay w = ray.watertight;
   bool found = false;
-  for (unsigned z = static_cast<unsigned>(mask); z != 0; z &= z - 1) {
-    const int lane = lowest_lane(z);
-    w.tmax = tmax;
-    PrimitiveHit h;
-    if (!block_lane_hit_parameters(w, *blocks[lane >> 2], lane & 3, h)) continue;
-    if (any_hit) return true;
-    if (!comes_before_hit(h.t, geom(lane), prim(lane), hit)) continue;
-    tmax = h.t;
-    hit = {h.t, h.u, h.v, geom(lane), prim(lane)};
-    found = true;
+  if (mask != 0) {
+    alignas(32) float s[9][L::kCount];
+    const V* sheared[9] = {&ax, &ay, &az, &bx, &by, &bz, &cx, &cy, &cz};
+    for (int k = 0; k < 9; ++k) vstore(s[k], *sheared[k]);
+    for (unsigned z = static_cast<unsigned>(mask); z != 0; z &= z - 1) {
+      const int lane = lowest_lane(z);
+      w.tmax = tmax;
+      const ShearedTriangle st{s[0][lane], s[1][lane], s[2][lane], s[3][lane], s[4][lane],
+                               s[5][lane], s[6][lane], s[7][lane], s[8][lane]};
+      const std::optional<PrimitiveHit> h = sheared_triangle_hit(w, st);
+      if (!h || (!any_hit && !comes_before_hit(h->t, geom(lane), prim(lane), hit))) continue;
+      if (block_lane_is_degenerate(*blocks[lane >> 2], lane & 3)) continue;
+      if (any_hit) return true;
+      tmax = h->t;
+      hit = {h->t, h->u, h->v, geom(lane), prim(lane)};
+      found = true;
+    }
   }
   for (unsigned z = static_cast<unsigned>(special_mask); z != 0; z &= z - 1) {
     const int lane = lowest_lane(z);

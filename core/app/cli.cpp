@@ -15,7 +15,9 @@
 #include "core/app/bench_command.h"
 #include "core/app/commands.h"
 #include "core/app/merge_command.h"
+#include "core/app/mpi_world.h"
 #include "core/app/provenance.h"
+#include "core/app/rank_agreement.h"
 #include "core/app/validate_command.h"
 #include "core/error.h"
 #include "core/samplers.h"
@@ -34,9 +36,13 @@ std::string render_footer() {
 scene file's settings, which override prism's defaults: resolution {} x {}, {} spp,
 integrator '{}', accelerator '{}', sampler '{}', seed {}, all hardware threads.
 
-Integrator flags: -l, -m and -H (and the scene file's max_depth) stand for the parameters
-<integrator>.light_samples, .max_depth and .hemisphere of the integrators that have them (see
-`prism list`), and are ignored by the others. --set with the same key must agree with them.
+Integrator flags: -l, -m, -H and --two-sided-emitters (and the scene file's max_depth) stand
+for the parameters <integrator>.light_samples, .max_depth, .hemisphere and .two_sided_emitters
+of the integrators that have them (see `prism list`), and are ignored by the others. --set with
+the same key must agree with them.
+
+Ambient lights light the scene but, as in the CS184 homework, rays that leave the scene see
+black; --set path.ambient_visible=true (or direct.ambient_visible) shows them as a sky.
 
 Output: -f FILE picks the format by extension. FILE.exr writes a scene-linear EXR (add --png
 for FILE.png beside it); FILE.png/.jpg/.tif writes only that display-referred image (add --exr
@@ -76,7 +82,8 @@ void add_color_options(CLI::App& command, ColorOptions& color) {
 }
 
 void add_render_options(CLI::App& render, RenderOptions& o) {
-  render.add_option("scene", o.scene, "scene file (.dae or .json)");
+  render.add_option("scene", o.scene,
+                    "scene file (.dae, .json) or model file (.obj .ply .stl .gltf .glb .fbx)");
   render
       .add_option("--accel", o.accelerator, "accelerator: " + accelerator_registry().names_joined())
       ->capture_default_str();
@@ -102,6 +109,9 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_flag("-H,--hemisphere", o.hemisphere_sampling,
                   "direct light by uniform hemisphere sampling (alias of "
                   "<integrator>.hemisphere=true: direct, path)");
+  render.add_flag("--two-sided-emitters", o.two_sided_emitters,
+                  "emissive surfaces and area lights emit from both sides, as in Blender (alias "
+                  "of <integrator>.two_sided_emitters=true: direct, path)");
   render.add_option("-b,--lens-radius", o.lens_radius, "thin-lens aperture radius (0: pinhole)");
   render.add_option("-d,--focal-distance", o.focal_distance, "distance of the plane in focus");
   render.add_option("-e,--environment", o.environment_map,
@@ -129,7 +139,7 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("--pass-samples", o.pass_samples,
                     "samples per pixel in each pass (default: spp / 64, at least 1)");
   render.add_flag("--literal-camera", o.literal_camera,
-                  "COLLADA: use the file's camera, not the homework framing");
+                  "COLLADA and model files: use the file's camera, not the homework framing");
   add_color_options(render, o.color);
   render.add_option("--exr-type", o.exr_options.pixel_type, "EXR pixel type: half or float");
   render.add_option("--exr-compression", o.exr_options.compression,
@@ -138,14 +148,16 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
 }
 
 void add_info_options(CLI::App& info, InfoOptions& o) {
-  info.add_option("scene", o.scene, "scene file (.dae or .json)")->required();
+  info.add_option("scene", o.scene,
+                  "scene file (.dae, .json) or model file (.obj .ply .stl .gltf .glb .fbx)")
+      ->required();
   info.add_option("--accel", o.accelerators, "accelerators to build (default: all)")
       ->delimiter(',')
       ->allow_extra_args(false);
   info.add_option("--set", o.set, "component parameter key=value")->allow_extra_args(false);
   info.add_option("-t,--threads", o.threads, "worker threads; 0 = all (default)");
   info.add_flag("--literal-camera", o.literal_camera,
-                "COLLADA: use the file's camera, not the homework framing");
+                "COLLADA and model files: use the file's camera, not the homework framing");
 }
 
 void add_convert_options(CLI::App& convert, ConvertOptions& o) {
@@ -218,10 +230,17 @@ void add_merge_options(CLI::App& merge, MergeOptions& o) {
 }
 
 /// One line, whatever CLI11 put in its message.
-void print_usage_error(const std::string& message, const std::string& help_hint) {
+std::string usage_error_line(const std::string& message, const std::string& help_hint) {
   std::string line = message;
   std::replace(line.begin(), line.end(), '\n', ' ');
-  std::fprintf(stderr, "prism: error: %s; see '%s'\n", line.c_str(), help_hint.c_str());
+  return line + "; see '" + help_hint + "'";
+}
+
+/// Under mpirun every rank parses its own command line: they must run the same command, else
+/// every rank exits with the first failing rank's error (RankError, printed by rank 0), so that
+/// no rank waits for others that are not coming.
+void agree_on_command(int exit_code, const std::string& message, const nlohmann::json& command) {
+  agree_across_ranks(RankStatus{exit_code, message, command}, "the command");
 }
 
 }  // namespace
@@ -272,26 +291,36 @@ int run_cli(int argc, const char* const* argv) {
 
   std::vector<std::string> args = arguments_with_default_command(argc, argv);
   if (args.empty()) {
-    std::fputs(app.help().c_str(), stdout);
+    agree_on_command(kExitSuccess, "", "help");
+    if (mpi::rank() == 0) std::fputs(app.help().c_str(), stdout);
     return kExitSuccess;
   }
   try {
     std::reverse(args.begin(), args.end());  // CLI11 consumes the vector from its back
     app.parse(args);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed on stdout
+    if (e.get_exit_code() == 0) {  // --help, --version: printed on stdout
+      agree_on_command(kExitSuccess, "", "help");
+      return mpi::rank() == 0 ? app.exit(e) : kExitSuccess;
+    }
     std::string hint = "prism --help";
     for (const CLI::App* command : app.get_subcommands()) {
       hint = "prism " + command->get_name() + " --help";
     }
-    print_usage_error(e.what(), hint);
+    const std::string message = usage_error_line(e.what(), hint);
+    agree_on_command(kExitBadInput, message, nullptr);
+    std::fprintf(stderr, "prism: error: %s\n", message.c_str());
     return kExitBadInput;
   }
+  const std::vector<CLI::App*> commands = app.get_subcommands();
+  agree_on_command(kExitSuccess, "", commands.empty() ? "" : commands.back()->get_name());
 
   if (render->parsed()) {
     render_options.command_line = quote_command_line(argc, argv);
     return run_render_command(render_options);
   }
+  // Under mpirun only `render` runs on every rank: the other commands run on rank 0 alone.
+  if (mpi::rank() != 0) return kExitSuccess;
   if (info->parsed()) return run_info_command(info_options);
   if (list->parsed()) return run_list_command();
   if (colorspaces->parsed()) return run_colorspaces_command(ocio_config);

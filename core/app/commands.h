@@ -1,9 +1,12 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "accel/accelerator.h"
 #include "core/app/render_options.h"
+#include "core/app/scene_summary.h"
 
 namespace prism {
 
@@ -21,8 +24,22 @@ struct InfoOptions {
   bool literal_camera = false;
 };
 
-/// `prism info`: the scene's contents, camera and settings, then build statistics of each
-/// accelerator, on stdout. Throws prism::Error on bad input.
+/// What `prism info` reports: the scene's summary, then each accelerator's build statistics.
+struct InfoReport {
+  SceneSummary scene;
+  size_t primitives = 0;  ///< triangles and spheres
+  int threads = 0;        ///< the builds ran on this many threads
+  std::vector<std::pair<std::string, AccelStats>> accelerators;  ///< in the order asked for
+  std::vector<std::string> warnings;  ///< what the loader tolerated (Scene::warnings)
+};
+
+/// Collects what `prism info` prints: checks the options and creates every accelerator (an
+/// unknown name or --set key fails before the scene loads), loads the scene and builds each
+/// accelerator over it in turn. Throws prism::Error on bad input. prism.info() returns it.
+InfoReport collect_info(const InfoOptions& options);
+
+/// `prism info`: collect_info() on stdout, the scene's contents, camera and settings, then the
+/// build statistics of each accelerator. Throws prism::Error on bad input.
 int run_info_command(const InfoOptions& options);
 
 /// `prism list`: every registry's names with descriptions, on stdout.

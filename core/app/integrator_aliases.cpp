@@ -17,6 +17,9 @@ void add_integrator_aliases(const RenderOptions& options, const Scene& scene,
     params.set_alias(prefix + "max_depth", n, "the scene file's max_depth " + n);
   }
   if (options.hemisphere_sampling) params.set_alias(prefix + "hemisphere", "true", "-H");
+  if (options.two_sided_emitters) {
+    params.set_alias(prefix + "two_sided_emitters", "true", "--two-sided-emitters");
+  }
 }
 
 void record_integrator_aliases(const ParamSet& params, RenderSettings& settings) {

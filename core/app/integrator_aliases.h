@@ -14,6 +14,7 @@ namespace prism {
 ///   -m N  as I.max_depth=N; without -m, the scene file's settings.max_depth, unless --set
 ///         gives I.max_depth (flags override the scene file)
 ///   -H    as I.hemisphere=true
+///   --two-sided-emitters  as I.two_sided_emitters=true
 /// An integrator without such a parameter never reads the key: the flag is ignored. One that
 /// has it reads the flag's value, and throws Error(kUsage) naming both when --set gives the
 /// same key another value.

@@ -35,8 +35,13 @@ int run_list_command() {
   print_registry("accelerators (--accel)", accelerator_registry());
   print_registry("integrators (--integrator)", integrator_registry());
   print_registry("samplers (--sampler)", sampler_registry());
-  print_rows("scene formats (by extension)", {{".dae", "CS184 COLLADA 1.4.1 with the CGL profile"},
-                                              {".json", "prism's native JSON scene format"}});
+  print_rows("scene formats (by extension)",
+             {{".dae", "CS184 COLLADA 1.4.1 with the CGL profile"},
+              {".json", "prism's native JSON scene format"},
+              {".obj .ply .stl", "a model file through Assimp, framed and lit as a scene"},
+              {".gltf .glb .fbx",
+               "a model file through Assimp, with its materials, textures, "
+               "lights and camera"}});
   // Names come from the generator's own to_string(), so they match what its parser accepts.
   const std::initializer_list<std::pair<GeneratedMeshKind, const char*>> kinds = {
       {GeneratedMeshKind::kSphere, "tessellated UV sphere of radius 1"},

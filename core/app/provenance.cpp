@@ -35,6 +35,10 @@ ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& pa
     metadata.emplace_back("prism:crop",
                           fmt::format("{} {} {} {}", w.begin.x, w.begin.y, w.end.x, w.end.y));
   }
+  if (record.mpi_ranks > 1) {
+    metadata.emplace_back("prism:mpiRanks", std::to_string(record.mpi_ranks));
+    metadata.emplace_back("prism:mpiBytes", std::to_string(record.mpi_bytes));
+  }
   if (!record.environment.empty()) {
     metadata.emplace_back("prism:environment", record.environment);
     metadata.emplace_back("prism:environmentColorSpace", record.environment_space);

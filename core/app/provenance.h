@@ -24,11 +24,14 @@ struct RenderRecord {
   /// Why the render ended before its last pass: "time limit", "SIGINT", "SIGTERM"; empty when
   /// it finished.
   std::string stopped_by;
+  int mpi_ranks = 1;       ///< processes that rendered (mpirun -np); 1 without MPI
+  uint64_t mpi_bytes = 0;  ///< bytes of messages between them (all pass through rank 0)
 };
 
 /// The prism:* header attributes (version, scene, components, settings, timings, --set
 /// parameters, command line, non-finite samples, the sample range, passes and what stopped the
-/// render, prism:crop for a crop, and prism:environment / prism:environmentColorSpace when an
+/// render, prism:crop for a crop, prism:mpiRanks and prism:mpiBytes for a render on several MPI
+/// ranks, and prism:environment / prism:environmentColorSpace when an
 /// environment map was used) of an output file. The image
 /// writers add the colour attributes (config, its hash, spaces, display, view) themselves.
 ImageMetadata make_provenance(const RenderSettings& settings, const ParamSet& params,

@@ -1,46 +1,34 @@
-// The render driver: one top-down function from options to files, in the order the work happens.
+// The render driver: one top-down function from options to files, in the order the work happens;
+// the steps it shares with the Python module are in render_driver.cpp.
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <optional>
 
-#include "accel/accelerator.h"
 #include "color/color_pipeline.h"
 #include "color/image_output.h"
 #include "color/output_plan.h"
 #include "core/app/commands.h"
-#include "core/app/component_params.h"
-#include "core/app/environment_map.h"
-#include "core/app/integrator_aliases.h"
 #include "core/app/interrupts.h"
+#include "core/app/mpi_render.h"
+#include "core/app/mpi_world.h"
 #include "core/app/progressive_render.h"
 #include "core/app/provenance.h"
+#include "core/app/rank_agreement.h"
+#include "core/app/render_driver.h"
 #include "core/app/render_state.h"
 #include "core/app/resume.h"
 #include "core/film.h"
-#include "core/parallel.h"
 #include "core/progress.h"
-#include "core/samplers.h"
 #include "core/strings.h"
-#include "integrators/integrator.h"
-#include "scenes/scene_loader.h"
 
 namespace prism {
 namespace {
-
-/// The scene's camera with the lens flags applied, fitted to the image's aspect ratio.
-Camera render_camera(const Scene& scene, const RenderOptions& options,
-                     const RenderSettings& settings) {
-  Camera camera = scene.camera;
-  if (options.lens_radius) camera.lens_radius = *options.lens_radius;
-  if (options.focal_distance) camera.focal_distance = *options.focal_distance;
-  camera.fit_to_aspect(float(settings.width) / float(settings.height));
-  camera.validate();
-  return camera;
-}
 
 /// The line printed after the render; it lists the image files, not the sample-rate picture.
 std::string summary_line(const std::filesystem::path& scene, const RenderSettings& settings,
@@ -55,26 +43,15 @@ std::string summary_line(const std::filesystem::path& scene, const RenderSetting
           ? ""
           : fmt::format(" (stopped by {} after {} of {} passes)", record.stopped_by,
                         record.passes_complete, record.pass_count);
+  const std::string ranks = record.mpi_ranks > 1
+                                ? fmt::format(" on {} MPI ranks ({:.3g} MB exchanged)",
+                                              record.mpi_ranks, double(record.mpi_bytes) * 1e-6)
+                                : "";
   return fmt::format(
-      "{}: {} build {:.4g} ms, {} render {}x{} at {} spp {:.4g} ms ({:.3g} Msamples/s){} -> {}",
+      "{}: {} build {:.4g} ms, {} render {}x{} at {} spp {:.4g} ms ({:.3g} Msamples/s){}{} -> {}",
       scene.filename().string(), settings.accelerator, record.build_ms, settings.integrator,
-      settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6, stopped,
-      join(files));
-}
-
-/// Camera samples the film received (the adaptive sampler stops pixels early).
-double total_camera_samples(const Image& image, const RenderSettings& settings) {
-  const auto it =
-      std::find(image.channel_names.begin(), image.channel_names.end(), "sampleCount.Y");
-  if (it == image.channel_names.end()) {
-    return double(settings.width) * settings.height * settings.spp;
-  }
-  const int channel = static_cast<int>(it - image.channel_names.begin());
-  double total = 0.0;
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) total += image.at(x, y, channel);
-  }
-  return total;
+      settings.width, settings.height, settings.spp, record.render_ms, per_second * 1e-6, ranks,
+      stopped, join(files));
 }
 
 /// Whether the render is a part of a frame: a crop or a sample range.
@@ -92,72 +69,87 @@ RenderOptions stored_options(const RenderOptions& options, const OutputPlan& out
   return with_absolute_paths(stored);
 }
 
+/// The options of the render: `given`, or with --resume the checkpoint's (read into `resumed`).
+/// Under MPI rank 0 reads the checkpoint and the other ranks take its options (they may not
+/// see the file), keeping their own --threads. Collective under MPI.
+RenderOptions options_to_render(const RenderOptions& given, std::optional<RenderState>& resumed) {
+  RenderOptions options = given;
+  RankStatus mine;
+  if (mpi::rank() == 0 && !given.resume.empty()) {
+    try {
+      resumed = read_render_state(given.resume);
+      options = resumed_options(given, resumed->record, given.resume);
+      mine.data = options_to_json(options);
+    } catch (...) {
+      if (mpi::size() <= 1) throw;
+      const ErrorReport report = current_error_report();
+      mine = RankStatus{report.exit_code, report.message, nullptr};
+    }
+  }
+  const RankStatus rank0 = take_rank0_status(mine);
+  if (mpi::rank() != 0 && !rank0.data.is_null()) {
+    options = options_from_json(rank0.data, given.resume);
+    options.threads = given.threads;
+  }
+  return options;
+}
+
+/// What every rank of a distributed render must share: the identity, and the pixels and samples
+/// rendered (which the identity leaves out).
+nlohmann::json frame_of(const PreparedRender& r) {
+  nlohmann::json frame = r.identity;
+  const PixelRect& w = r.settings.window;
+  frame["window"] = {w.begin.x, w.begin.y, w.end.x, w.end.y};
+  frame["samples"] = {r.settings.samples.first, r.settings.samples.last};
+  frame["image"] = {r.settings.width, r.settings.height};
+  return frame;
+}
+
 }  // namespace
 
 int run_render_command(const RenderOptions& given) {
+  // Under mpirun (mpi::size() > 1) every rank runs this; rank 0 coordinates and writes.
+  const bool distributed = mpi::size() > 1;
+  const bool writer = mpi::rank() == 0;
   // --resume: the checkpoint's options, with only run controls from the command line.
   std::optional<RenderState> resumed;
-  RenderOptions options = given;
-  if (!given.resume.empty()) {
-    resumed = read_render_state(given.resume);
-    options = resumed_options(given, resumed->record, given.resume);
+  const RenderOptions options = options_to_render(given, resumed);
+  // Under MPI the ranks agree before the build that each of them read everything and would
+  // render the same frame; otherwise they all exit with the first failing rank's error.
+  std::unique_ptr<PreparedRender> prepared;
+  RankStatus status;
+  try {
+    prepared = prepare_render(options, RenderDestination::kFiles, resumed, given.resume);
+    if (distributed) status.data = frame_of(*prepared);
+  } catch (...) {
+    if (!distributed) throw;
+    const ErrorReport report = current_error_report();
+    status = RankStatus{report.exit_code, report.message, nullptr};
   }
-  // Every check that needs no file comes first, so that a typo costs nothing.
-  validate_render_options(options);
-  // Every file to write, checked (extensions, EXR encoding, writable folders) before the work.
-  const OutputPlan outputs = resolve_output_plan(options);
-  validate_outputs(outputs);
-  if (!options.checkpoint.empty()) check_output_writable(options.checkpoint);
-  ParamSet params = parse_param_assignments(options.set);
-  ThreadLimit thread_limit(options.threads);
-  const std::unique_ptr<Accelerator> accel =
-      accelerator_registry().create(options.accelerator, params);
+  agree_across_ranks(status, "the frame to render (scene file, options or prism version)");
+  PreparedRender& r = *prepared;
+  const OutputPlan& outputs = r.outputs;
+  const RenderSettings& settings = r.settings;
+  const ColorPipeline& pipeline = *r.pipeline;
+  // From here the ranks depend on each other: a rank failing alone ends them all.
+  MpiJob job;
 
-  const std::filesystem::path scene_path = render_scene_path(options);
-  Scene scene = load_scene(scene_path, SceneLoadOptions{.literal_camera = options.literal_camera});
-  RenderSettings settings = resolve_render_settings(options, scene);
-
-  const ColorPipeline pipeline(options.color);
-  pipeline.convert_scene_to_working(scene, pipeline.scene_file_space());
-  // The environment map is input like the scene: read and checked before any long work. Its
-  // row 0 is the pole along the camera's up.
-  if (!options.environment_map.empty()) {
-    EnvironmentMap environment = load_environment_map(options.environment_map, pipeline);
-    for (const auto& warning : environment.warnings) {
-      std::fprintf(stderr, "prism: warning: %s\n", warning.c_str());
-    }
-    scene.environment = SceneEnvironment{.image = std::move(environment.image),
-                                         .up = scene.camera.up,
-                                         .file = options.environment_map,
-                                         .color_space = environment.color_space};
-  }
-  // What decides every pixel: a resumed render must be the one its checkpoint started.
-  const nlohmann::json identity = render_identity(options, scene, pipeline);
-  if (resumed) check_resume_identity(identity, resumed->record, given.resume);
-
-  // Every component exists before the (possibly long) build, so mistyped names and --set keys
-  // fail fast. -l, -m, -H (and the scene's max_depth) reach the integrator as its parameters.
-  add_integrator_aliases(options, scene, settings.integrator, params);
-  const std::unique_ptr<Integrator> integrator =
-      integrator_registry().create(settings.integrator, params);
-  const std::unique_ptr<Sampler> sampler = create_sampler(settings.sampler, settings.seed);
-  sampler->set_sample_count(settings.spp);
-  check_component_params(
-      params, {{"accelerator", settings.accelerator}, {"integrator", settings.integrator}});
-  record_integrator_aliases(params, settings);
-  const Camera camera = render_camera(scene, options, settings);
-
-  RenderRecord record;
-  record.scene = scene_path.string();
-  record.command_line = options.command_line;
-  if (scene.environment) {
-    record.environment = scene.environment->file;
-    record.environment_space = scene.environment->color_space;
-  }
-  accel->build(scene.geometry);
-  record.build_ms = accel->stats().build_ms;
+  RenderRecord record = start_record(r);
+  start_render(r, record);
+  const TileRenderer& renderer = *r.renderer;
 
   const RenderSchedule schedule(settings.window, settings.samples, settings.pass_samples);
+  if (!writer) {
+    // A worker: renders what rank 0 hands out, and exits as rank 0 says.
+    const InterruptHandlers interrupts;
+    MpiChannel channel;
+    const int code = serve_render(renderer, schedule, settings.width, settings.height, channel,
+                                  r.thread_limit->threads(), &interrupts.stop_signal());
+    channel.flush();
+    job.close();
+    return code;
+  }
+
   Film film =
       resumed ? std::move(resumed->film) : Film(settings.width, settings.height, settings.window);
   if (film.width() != settings.width || film.height() != settings.height ||
@@ -166,7 +158,7 @@ int run_render_command(const RenderOptions& given) {
                 ErrorLocation{given.resume, 0, "--resume"});
   }
   const double earlier_ms = resumed ? resumed->record.render_ms : 0.0;
-  RenderStateRecord state{.identity = identity,
+  RenderStateRecord state{.identity = r.identity,
                           .options = stored_options(options, outputs),
                           .window = settings.window,
                           .samples = settings.samples,
@@ -175,6 +167,8 @@ int run_render_command(const RenderOptions& given) {
                           .height = settings.height,
                           .spp = settings.spp,
                           .render_ms = earlier_ms};
+  record.mpi_ranks = mpi::size();
+  std::optional<MpiChannel> channel;  // under MPI: the messages to and from the workers
   const auto finish_record = [&](const ProgressiveResult& result, const Film& f) {
     record.render_ms = earlier_ms + result.seconds * 1e3;
     record.passes_complete = result.passes_complete;
@@ -188,40 +182,50 @@ int run_render_command(const RenderOptions& given) {
     snapshot.passes_complete = passes_complete(schedule, f);
     snapshot.pass_count = schedule.pass_count();
     snapshot.non_finite_samples = f.non_finite_samples();
-    write_render_state(options.checkpoint, f, state, make_provenance(settings, params, snapshot),
+    if (channel) snapshot.mpi_bytes = channel->bytes_sent() + channel->bytes_received();
+    write_render_state(options.checkpoint, f, state, make_provenance(settings, r.params, snapshot),
                        pipeline);
   };
 
   ProgressReporter progress("rendering", samples_remaining(schedule, film), options.quiet);
-  const RenderContext context{
-      .scene = scene,
-      .accel = *accel,
-      .camera = camera,
-      .sampler_prototype = *sampler,
-      .spp = settings.spp,
-      .adaptive_batch = settings.adaptive_batch,
-      .adaptive_tolerance = settings.adaptive_tolerance,
-      .progress = nullptr,
-  };
-  const std::unique_ptr<const TileRenderer> renderer = integrator->start(context);
   // From here a first SIGINT/SIGTERM stops the render and writes what it has.
   const InterruptHandlers interrupts;
   const auto run_start = std::chrono::steady_clock::now();
-  ProgressiveOptions run{.time_limit_seconds = options.time_limit.value_or(0.0),
-                         .stop_signal = &interrupts.stop_signal(),
-                         .checkpoint_interval_seconds = options.checkpoint_interval,
-                         .progress = &progress};
+  std::function<void(const Film&)> checkpoint;
   if (!options.checkpoint.empty()) {
-    run.checkpoint = [&](const Film& f) {
+    checkpoint = [&](const Film& f) {
       save_checkpoint(
           f, std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count());
     };
   }
-  const ProgressiveResult result = render_progressively(*renderer, schedule, film, run);
+  ProgressiveResult result;
+  int stop_signal = 0;
+  if (distributed) {
+    channel.emplace();
+    const DistributedResult distributed_result = coordinate_render(
+        renderer, schedule, film, *channel,
+        DistributedOptions{.lanes = r.thread_limit->threads(),
+                           .stop_signal = &interrupts.stop_signal(),
+                           .checkpoint = checkpoint,
+                           .checkpoint_interval_seconds = options.checkpoint_interval,
+                           .progress = &progress});
+    result = distributed_result.run;
+    stop_signal = distributed_result.signal;
+    record.mpi_bytes = distributed_result.bytes_exchanged;
+  } else {
+    result = render_progressively(
+        renderer, schedule, film,
+        ProgressiveOptions{.time_limit_seconds = options.time_limit.value_or(0.0),
+                           .stop_signal = &interrupts.stop_signal(),
+                           .checkpoint = checkpoint,
+                           .checkpoint_interval_seconds = options.checkpoint_interval,
+                           .progress = &progress});
+  }
   progress.done();
+  if (stop_signal == 0) stop_signal = interrupts.stop_signal();
   finish_record(result, film);
   if (result.end == RenderEnd::kTimeLimit) record.stopped_by = "time limit";
-  if (result.end == RenderEnd::kSignal) record.stopped_by = signal_name(interrupts.stop_signal());
+  if (result.end == RenderEnd::kSignal) record.stopped_by = signal_name(stop_signal);
   // A stopped render can be continued: its checkpoint holds every sample taken.
   if (result.end != RenderEnd::kComplete && !options.checkpoint.empty()) {
     save_checkpoint(film, result.seconds);
@@ -231,9 +235,9 @@ int run_render_command(const RenderOptions& given) {
                  static_cast<unsigned long long>(record.non_finite_samples));
   }
 
-  const Image image = film.resolve();
-  record.camera_samples = total_camera_samples(image, settings);
-  const ImageMetadata metadata = make_provenance(settings, params, record);
+  const RenderedFrame frame = resolve_frame(r, film, record);
+  const Image& image = frame.image;
+  const ImageMetadata& metadata = frame.metadata;
   if (is_part(settings) && outputs.files.front().kind == OutputKind::kSceneLinearExr) {
     // A part of a frame keeps its exact sums, for `prism merge`.
     state.render_ms = record.render_ms;
@@ -244,11 +248,13 @@ int run_render_command(const RenderOptions& given) {
   } else {
     write_outputs(outputs, image, metadata, pipeline);
   }
-  std::printf("%s\n", summary_line(scene_path, settings, outputs, record).c_str());
-  if (const int signal = interrupts.stop_signal(); signal != 0) {
-    return interrupted_exit_code(signal);
-  }
-  return kExitSuccess;
+  std::printf("%s\n", summary_line(r.scene_path, settings, outputs, record).c_str());
+  // A signal during the writing still says the run was interrupted.
+  if (stop_signal == 0) stop_signal = interrupts.stop_signal();
+  const int code = stop_signal != 0 ? interrupted_exit_code(stop_signal) : kExitSuccess;
+  if (channel) finish_workers(*channel, code);
+  job.close();
+  return code;
 }
 
 }  // namespace prism

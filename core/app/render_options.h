@@ -53,6 +53,7 @@ struct RenderOptions {
   int threads = 0;                                 ///< 0: all hardware threads
   std::optional<std::pair<int, double>> adaptive;  ///< batch size, tolerance (-a)
   bool hemisphere_sampling = false;                ///< -H
+  bool two_sided_emitters = false;                 ///< --two-sided-emitters
   std::optional<float> lens_radius;                ///< -b
   std::optional<float> focal_distance;             ///< -d
   std::string environment_map;                     ///< -e: lat-long image file; empty: none

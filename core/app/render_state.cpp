@@ -35,6 +35,10 @@ class Fields {
     }
   }
   template <typename T>
+  T get_or(const std::string& key, T fallback) const {
+    return object_.contains(key) ? get<T>(key) : fallback;
+  }
+  template <typename T>
   std::optional<T> get_optional(const std::string& key) const {
     const auto it = object_.find(key);
     if (it == object_.end()) fail(key, "is missing");
@@ -74,6 +78,7 @@ json options_to_json(const RenderOptions& o) {
       {"threads", o.threads},
       {"adaptive", optional_json(o.adaptive)},
       {"hemisphere_sampling", o.hemisphere_sampling},
+      {"two_sided_emitters", o.two_sided_emitters},
       {"lens_radius", optional_json(o.lens_radius)},
       {"focal_distance", optional_json(o.focal_distance)},
       {"environment_map", o.environment_map},
@@ -119,6 +124,8 @@ RenderOptions options_from_json(const json& j, const std::string& source) {
   o.threads = f.get<int>("threads");
   o.adaptive = f.get_optional<std::pair<int, double>>("adaptive");
   o.hemisphere_sampling = f.get<bool>("hemisphere_sampling");
+  // Absent from the state files of prism before the flag existed.
+  o.two_sided_emitters = f.get_or<bool>("two_sided_emitters", false);
   o.lens_radius = f.get_optional<float>("lens_radius");
   o.focal_distance = f.get_optional<float>("focal_distance");
   o.environment_map = f.get<std::string>("environment_map");
@@ -172,6 +179,7 @@ json render_identity(const RenderOptions& o, const Scene& scene, const ColorPipe
       {"seed", optional_json(o.seed)},
       {"adaptive", optional_json(o.adaptive)},
       {"hemisphere_sampling", o.hemisphere_sampling},
+      {"two_sided_emitters", o.two_sided_emitters},
       {"lens_radius", optional_json(o.lens_radius)},
       {"focal_distance", optional_json(o.focal_distance)},
       {"literal_camera", o.literal_camera},

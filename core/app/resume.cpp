@@ -43,7 +43,10 @@ RenderOptions resumed_options(const RenderOptions& given, const RenderStateRecor
   options.threads = given.threads;
   options.quiet = given.quiet;
   options.time_limit = given.time_limit;
-  options.checkpoint_interval = given.checkpoint_interval;
+  // The interval and path are kept unless given again; threads and quiet are this run's.
+  if (given.checkpoint_interval != RenderOptions{}.checkpoint_interval) {
+    options.checkpoint_interval = given.checkpoint_interval;
+  }
   if (!given.checkpoint.empty()) {
     options.checkpoint = given.checkpoint;
   } else if (options.checkpoint.empty()) {
@@ -73,6 +76,10 @@ void check_resume_identity(const json& identity, const RenderStateRecord& state,
       field = key;
       break;
     }
+  }
+  // A checkpoint of an older prism may lack a field this one records.
+  for (const auto& [key, value] : identity.items()) {
+    if (field == "?" && !state.identity.contains(key)) field = key;
   }
   const std::string why = field == "scene"
                               ? "the scene (its file, a file it names, or its colours) "

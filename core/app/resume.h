@@ -9,8 +9,8 @@ namespace prism {
 
 /// The options of a render resumed from `state` (--resume): the options stored in the
 /// checkpoint, with only what does not change the image taken from `given` (the resume command
-/// line): --threads, --quiet, --time-limit (a limit is per run), --checkpoint-interval and
-/// --checkpoint (else the stored checkpoint path, else the resumed file itself). Any other
+/// line): --threads, --quiet and --time-limit (all three per run), --checkpoint-interval (else
+/// the stored one) and --checkpoint (else the stored checkpoint path, else the resumed file). Any other
 /// option `given` sets to a value other than the stored one is Error(kUsage) naming it and both
 /// values.
 RenderOptions resumed_options(const RenderOptions& given, const RenderStateRecord& state,

@@ -56,6 +56,17 @@ struct Judge {
     }
     return c;
   }
+
+  /// For a hard mismatch: which backend's answer is not the oracle's (bit 0: a, bit 1: b), by
+  /// primitive (or miss), so a report can tell which side is wrong.
+  int off_oracle(const Ray& ray) const {
+    const std::optional<OracleHit> o = oracle.closest(ray);
+    const auto off = [&](const std::optional<Hit>& h) {
+      if (!o || !h) return o.has_value() != h.has_value();
+      return h->geom_id != o->geom_id || h->prim_id != o->prim_id;
+    };
+    return (off(a.intersect(ray)) ? 1 : 0) | (off(b.intersect(ray)) ? 2 : 0);
+  }
 };
 
 /// The pixel of a width x height image through `camera` (as generate_ray() maps film
@@ -276,7 +287,19 @@ int run_validate_command(const ValidateOptions& given) {
       tally.add(verdicts[i], context);
       total.add(verdicts[i], context);
     }
-    fmt::print("  {:<3} {:>8} rays: {}\n", set, tally.total(), tally.summary());
+    std::string blame;
+    if (tally.hard > 0) {
+      size_t a_off = 0, b_off = 0;
+      for (size_t i = 0; i < probes.size(); ++i) {
+        if (probes[i].set != set || verdicts[i].agreement != HitAgreement::kHard) continue;
+        const int off = judge.off_oracle(probes[i].ray);
+        a_off += (off & 1) != 0;
+        b_off += (off & 2) != 0;
+      }
+      blame = fmt::format(" ({} off the oracle's primitive: {}, {}: {})", options.accel, a_off,
+                          options.against, b_off);
+    }
+    fmt::print("  {:<3} {:>8} rays: {}{}\n", set, tally.total(), tally.summary(), blame);
   }
   if (!total.first_hard.empty()) fmt::print("first hard mismatch: {}\n", total.first_hard);
 

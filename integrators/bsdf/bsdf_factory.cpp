@@ -4,11 +4,8 @@
 
 #include "core/error.h"
 
-#include "integrators/bsdf/diffuse_bsdf.h"
 #include "integrators/bsdf/fresnel.h"
 #include "integrators/bsdf/glass_bsdf.h"
-#include "integrators/bsdf/microfacet_bsdf.h"
-#include "integrators/bsdf/mirror_bsdf.h"
 
 namespace prism {
 
@@ -36,6 +33,26 @@ std::unique_ptr<Bsdf> make_bsdf(const Material& material, const BsdfOptions& opt
       return std::make_unique<EmissionBsdf>();
   }
   return std::make_unique<EmissionBsdf>();
+}
+
+const Bsdf& make_bsdf_with_reflectance(const Material& material, const Rgb& reflectance,
+                                       const BsdfOptions& options, BsdfStorage& storage) {
+  switch (material.type) {
+    case MaterialType::kDiffuse:
+      return storage.emplace<DiffuseBsdf>(reflectance);
+    case MaterialType::kMirror:
+      return storage.emplace<MirrorBsdf>(reflectance);
+    case MaterialType::kMicrofacet: {
+      Rgb eta, k;
+      conductor_from_reflectance(reflectance, eta, k);
+      return storage.emplace<MicrofacetBsdf>(eta, k, material.alpha, options.microfacet);
+    }
+    default:
+      throw Error(
+          ErrorKind::kInternal,
+          "a " + std::string(to_string(material.type)) + " material takes no reflectance texture",
+          {{}, 0, "material '" + material.name + "'"});
+  }
 }
 
 Rgb material_albedo(const Material& material) {

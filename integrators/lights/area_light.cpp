@@ -1,5 +1,6 @@
 #include "integrators/lights/area_light.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "integrators/sampling/warp.h"
@@ -15,15 +16,22 @@ float area_to_solid_angle_pdf(float pdf_area, float distance, float cos_light) {
 
 namespace {
 
-/// The sample toward light point `q` with normal `n` (emitting side) from `p`.
+/// Cosine between the emitter's front normal `n` and the unit direction `w_out` leaving it, as
+/// far as the emitter emits that way: |cos| when two-sided, else cos clamped to 0 (its back).
+float emitting_cos(const Vec3& n, const Vec3& w_out, bool two_sided) {
+  const float c = glm::dot(n, w_out);
+  return two_sided ? std::abs(c) : std::max(c, 0.0f);
+}
+
+/// The sample toward light point `q` with front normal `n` from `p`.
 std::optional<LightLiSample> toward_point(const Vec3& p, const Vec3& q, const Vec3& n,
-                                          float pdf_area, const Rgb& radiance) {
+                                          bool two_sided, float pdf_area, const Rgb& radiance) {
   const Vec3 d = q - p;
   const float distance = glm::length(d);
   if (!(distance > 0.0f)) return std::nullopt;
   LightLiSample s;
   s.wi = d / distance;
-  const float cos_light = glm::dot(n, -s.wi);
+  const float cos_light = emitting_cos(n, -s.wi, two_sided);
   if (cos_light <= 0.0f) return std::nullopt;  // the back of a one-sided emitter
   s.pdf = area_to_solid_angle_pdf(pdf_area, distance, cos_light);
   if (s.pdf <= 0.0f) return std::nullopt;
@@ -34,24 +42,28 @@ std::optional<LightLiSample> toward_point(const Vec3& p, const Vec3& q, const Ve
 
 }  // namespace
 
-ParallelogramLight::ParallelogramLight(const Light& light)
+ParallelogramLight::ParallelogramLight(const Light& light, bool two_sided)
     : radiance_(light.color),
       corner_(light.position - 0.5f * (light.edge_u + light.edge_v)),
       edge_u_(light.edge_u),
       edge_v_(light.edge_v),
       normal_(glm::normalize(light.direction)),
-      area_(glm::length(glm::cross(light.edge_u, light.edge_v))) {}
+      area_(glm::length(glm::cross(light.edge_u, light.edge_v))),
+      two_sided_(two_sided) {}
 
 std::optional<LightLiSample> ParallelogramLight::sample_li(const Vec3& p, Vec2 u) const {
   if (!(area_ > 0.0f)) return std::nullopt;
   const Vec3 q = corner_ + u.x * edge_u_ + u.y * edge_v_;
-  return toward_point(p, q, normal_, 1.0f / area_, radiance_);
+  return toward_point(p, q, normal_, two_sided_, 1.0f / area_, radiance_);
 }
 
-Rgb ParallelogramLight::power() const { return kPi * area_ * radiance_; }
+Rgb ParallelogramLight::power() const {
+  return (two_sided_ ? 2.0f : 1.0f) * kPi * area_ * radiance_;
+}
 
-MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance)
-    : mesh_(mesh), radiance_(radiance) {
+MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sided,
+                     EmissionTexture texture)
+    : mesh_(mesh), radiance_(radiance), texture_(texture), two_sided_(two_sided) {
   std::vector<float> areas(mesh.triangles.size());
   normals_.resize(mesh.triangles.size());
   double total = 0.0;
@@ -82,7 +94,17 @@ std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
   const glm::uvec3 t = mesh_.triangles[i];
   const Vec3 q = (1.0f - b.x - b.y) * mesh_.positions[t.x] + b.x * mesh_.positions[t.y] +
                  b.y * mesh_.positions[t.z];
-  return toward_point(p, q, normals_[i], 1.0f / area_, radiance_);
+  Rgb radiance = radiance_;
+  if (texture_) {
+    // The uv of the point as Scene::surface_at() interpolates it (barycentrics without uvs).
+    Vec2 uv = b;
+    if (!mesh_.uvs.empty()) {
+      uv = (1.0f - b.x - b.y) * mesh_.uvs[3 * i] + b.x * mesh_.uvs[3 * i + 1] +
+           b.y * mesh_.uvs[3 * i + 2];
+    }
+    radiance *= glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
+  }
+  return toward_point(p, q, normals_[i], two_sided_, 1.0f / area_, radiance);
 }
 
 float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const {
@@ -90,26 +112,41 @@ float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) cons
   const Vec3 d = light_hit.position - p;
   const float distance = glm::length(d);
   if (!(distance > 0.0f)) return 0.0f;
-  // sample_li() never returns points seen from behind: their density is 0.
-  const float cos_light = glm::dot(light_hit.geometric_normal, -d / distance);
+  // sample_li() never returns points seen from a side that does not emit: their density is 0.
+  const float cos_light = emitting_cos(light_hit.geometric_normal, -d / distance, two_sided_);
   if (cos_light <= 0.0f) return 0.0f;
   return area_to_solid_angle_pdf(1.0f / area_, distance, cos_light);
 }
 
 Rgb MeshLight::le(const SurfaceInteraction& light_hit, const Vec3& wo) const {
-  return glm::dot(light_hit.geometric_normal, wo) > 0.0f ? radiance_ : Rgb(0.0f);
+  if (emitting_cos(light_hit.geometric_normal, wo, two_sided_) <= 0.0f) return Rgb(0.0f);
+  if (!texture_) return radiance_;
+  return radiance_ * glm::max(texture_.textures->at(texture_.texture, light_hit), Rgb(0.0f));
 }
 
-Rgb MeshLight::power() const { return kPi * area_ * radiance_; }
+Rgb MeshLight::power() const {
+  const Rgb mean =
+      texture_ ? glm::max(texture_.textures->average(texture_.texture), Rgb(0.0f)) : Rgb(1.0f);
+  return (two_sided_ ? 2.0f : 1.0f) * kPi * area_ * radiance_ * mean;
+}
 
-SphereLight::SphereLight(const Sphere& sphere, const Rgb& radiance)
-    : sphere_(sphere), radiance_(radiance) {}
+SphereLight::SphereLight(const Sphere& sphere, const Rgb& radiance, bool two_sided,
+                         EmissionTexture texture)
+    : sphere_(sphere), radiance_(radiance), texture_(texture), two_sided_(two_sided) {}
 
 std::optional<LightLiSample> SphereLight::sample_li(const Vec3& p, Vec2 u) const {
   const float area = 4.0f * kPi * sphere_.radius * sphere_.radius;
   if (!(area > 0.0f)) return std::nullopt;
   const Vec3 n = square_to_uniform_sphere(u);
-  return toward_point(p, sphere_.center + sphere_.radius * n, n, 1.0f / area, radiance_);
+  Rgb radiance = radiance_;
+  if (texture_) {
+    // The uv of the point as Scene::surface_at() parameterises spheres.
+    float phi = std::atan2(n.y, n.x);
+    if (phi < 0.0f) phi += 2.0f * kPi;
+    const Vec2 uv(phi / (2.0f * kPi), std::acos(std::clamp(n.z, -1.0f, 1.0f)) / kPi);
+    radiance *= glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
+  }
+  return toward_point(p, sphere_.center + sphere_.radius * n, n, two_sided_, 1.0f / area, radiance);
 }
 
 float SphereLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const {
@@ -118,17 +155,22 @@ float SphereLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) co
   const Vec3 d = light_hit.position - p;
   const float distance = glm::length(d);
   if (!(distance > 0.0f)) return 0.0f;
-  const float cos_light = glm::dot(light_hit.geometric_normal, -d / distance);
+  const float cos_light = emitting_cos(light_hit.geometric_normal, -d / distance, two_sided_);
   if (cos_light <= 0.0f) return 0.0f;
   return area_to_solid_angle_pdf(1.0f / area, distance, cos_light);
 }
 
 Rgb SphereLight::le(const SurfaceInteraction& light_hit, const Vec3& wo) const {
-  return glm::dot(light_hit.geometric_normal, wo) > 0.0f ? radiance_ : Rgb(0.0f);
+  if (emitting_cos(light_hit.geometric_normal, wo, two_sided_) <= 0.0f) return Rgb(0.0f);
+  if (!texture_) return radiance_;
+  return radiance_ * glm::max(texture_.textures->at(texture_.texture, light_hit), Rgb(0.0f));
 }
 
 Rgb SphereLight::power() const {
-  return kPi * 4.0f * kPi * sphere_.radius * sphere_.radius * radiance_;
+  const Rgb mean =
+      texture_ ? glm::max(texture_.textures->average(texture_.texture), Rgb(0.0f)) : Rgb(1.0f);
+  return (two_sided_ ? 2.0f : 1.0f) * kPi * 4.0f * kPi * sphere_.radius * sphere_.radius *
+         radiance_ * mean;
 }
 
 }  // namespace prism

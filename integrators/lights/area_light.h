@@ -6,15 +6,24 @@
 #include "core/scene.h"
 #include "integrators/lights/light_source.h"
 #include "integrators/sampling/distribution.h"
+#include "integrators/surface_textures.h"
 
 namespace prism {
 
+/// A texture that multiplies an emitter's radiance: none when `textures` is null.
+struct EmissionTexture {
+  uint32_t texture = kNoTexture;
+  const SurfaceTextures* textures = nullptr;
+
+  explicit operator bool() const { return textures != nullptr; }
+};
+
 /// The CGL area light: a one-sided parallelogram of radiance `color` emitting along
-/// `direction`, not part of the scene geometry (no ray ever hits it). Sampled uniformly in
-/// area.
+/// `direction` (both ways when `two_sided`), not part of the scene geometry (no ray ever hits
+/// it). Sampled uniformly in area.
 class ParallelogramLight final : public LightSource {
  public:
-  explicit ParallelogramLight(const Light& light);
+  ParallelogramLight(const Light& light, bool two_sided);
   LightKind kind() const override { return LightKind::kArea; }
   std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
   Rgb power() const override;
@@ -22,16 +31,21 @@ class ParallelogramLight final : public LightSource {
  private:
   Rgb radiance_;
   Vec3 corner_, edge_u_, edge_v_;
-  Vec3 normal_;  ///< emitting side
+  Vec3 normal_;  ///< emitting side (the front, when two-sided)
   float area_;
+  bool two_sided_;
 };
 
-/// An emissive triangle mesh as one area light: one-sided diffuse emission of `radiance` on
-/// the side of each triangle's geometric normal as Scene::surface_at() orients it. Sampled by
-/// choosing a triangle by area and a point uniformly on it.
+/// An emissive triangle mesh as one area light: diffuse emission of `radiance` on the side of
+/// each triangle's geometric normal as Scene::surface_at() orients it, or on both sides when
+/// `two_sided`. With a `texture`, the radiance at a point is `radiance` times the texture
+/// there: filtered where a ray hits the mesh, unfiltered at points light sampling draws; the
+/// power is based on the texture's mean. Sampled by choosing a triangle by area and a point
+/// uniformly on it (not by the texture's brightness).
 class MeshLight final : public LightSource {
  public:
-  MeshLight(const TriangleMesh& mesh, const Rgb& radiance);
+  MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sided,
+            EmissionTexture texture = {});
   LightKind kind() const override { return LightKind::kSurface; }
   std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
   float pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const override;
@@ -42,15 +56,20 @@ class MeshLight final : public LightSource {
  private:
   const TriangleMesh& mesh_;
   Rgb radiance_;
+  EmissionTexture texture_;
   DiscreteDistribution triangles_;
-  std::vector<Vec3> normals_;  ///< per triangle: unit emitting-side normal
+  std::vector<Vec3> normals_;  ///< per triangle: unit emitting-side normal (the front)
   float area_ = 0.0f;
+  bool two_sided_;
 };
 
-/// An emissive sphere as an area light emitting outward; sampled uniformly in area.
+/// An emissive sphere as an area light emitting outward (and inward when `two_sided`);
+/// sampled uniformly in area. A `texture` works as MeshLight's does, in the sphere's uv
+/// parameterisation.
 class SphereLight final : public LightSource {
  public:
-  SphereLight(const Sphere& sphere, const Rgb& radiance);
+  SphereLight(const Sphere& sphere, const Rgb& radiance, bool two_sided,
+              EmissionTexture texture = {});
   LightKind kind() const override { return LightKind::kSurface; }
   std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
   float pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const override;
@@ -60,6 +79,8 @@ class SphereLight final : public LightSource {
  private:
   Sphere sphere_;
   Rgb radiance_;
+  EmissionTexture texture_;
+  bool two_sided_;
 };
 
 /// Converts an area density at a light point (distance `d`, |cos| at the light `cos_light`)

@@ -2,14 +2,31 @@
 
 #include <algorithm>
 
+#include "core/error.h"
 #include "integrators/lights/area_light.h"
 #include "integrators/lights/environment_light.h"
 #include "integrators/lights/point_light.h"
 #include "integrators/sampling/warp.h"
 
 namespace prism {
+namespace {
 
-LightSet::LightSet(const Scene& scene) : scene_(scene) {
+/// The radiance texture of an emissive material, with the lookups to read it.
+EmissionTexture emission_texture(const Material& m, const SurfaceTextures* textures) {
+  if (m.radiance_texture == kNoTexture) return {};
+  if (!textures) {
+    throw Error(ErrorKind::kInternal,
+                "material '" + m.name +
+                    "' has a radiance texture, but the light set has no texture lookups");
+  }
+  return {m.radiance_texture, textures};
+}
+
+}  // namespace
+
+LightSet::LightSet(const Scene& scene, const LightOptions& options, const SurfaceTextures* textures)
+    : scene_(scene) {
+  const bool two_sided = options.two_sided_emitters;
   const SceneGeometry& geometry = scene.geometry;
   const Bounds3 bounds = geometry.bounds();
   float radius = 1.0f;
@@ -25,11 +42,11 @@ LightSet::LightSet(const Scene& scene) : scene_(scene) {
         lights_.push_back(std::make_unique<DirectionalLight>(light, radius));
         break;
       case LightType::kAmbient:
-        lights_.push_back(std::make_unique<AmbientLight>(light, radius));
+        lights_.push_back(std::make_unique<AmbientLight>(light, radius, options.ambient_visible));
         break;
       case LightType::kArea:
         if (!light.duplicates_emissive_mesh) {
-          lights_.push_back(std::make_unique<ParallelogramLight>(light));
+          lights_.push_back(std::make_unique<ParallelogramLight>(light, two_sided));
         }
         break;
     }
@@ -44,7 +61,8 @@ LightSet::LightSet(const Scene& scene) : scene_(scene) {
     const Material& m = scene.materials[mesh.material_id];
     if (!m.is_emissive() || max_component(m.radiance) <= 0.0f || mesh.triangles.empty()) continue;
     mesh_light_[i] = int(lights_.size());
-    lights_.push_back(std::make_unique<MeshLight>(mesh, m.radiance));
+    lights_.push_back(
+        std::make_unique<MeshLight>(mesh, m.radiance, two_sided, emission_texture(m, textures)));
   }
   sphere_light_.assign(geometry.spheres.size(), -1);
   for (size_t i = 0; i < geometry.spheres.size(); ++i) {
@@ -52,7 +70,8 @@ LightSet::LightSet(const Scene& scene) : scene_(scene) {
     const Material& m = scene.materials[sphere.material_id];
     if (!m.is_emissive() || max_component(m.radiance) <= 0.0f) continue;
     sphere_light_[i] = int(lights_.size());
-    lights_.push_back(std::make_unique<SphereLight>(sphere, m.radiance));
+    lights_.push_back(std::make_unique<SphereLight>(sphere, m.radiance, two_sided,
+                                                    emission_texture(m, textures)));
   }
   std::vector<float> weights;
   weights.reserve(lights_.size());

@@ -14,6 +14,9 @@ enum class LightKind {
   kSurface,   ///< emissive scene geometry: also found by rays that hit it
   kArea,      ///< a parallelogram emitter that is not scene geometry: only sample_li() finds it
   kInfinite,  ///< surrounds the scene: also found by rays that escape
+  /// surrounds the scene, but rays that escape see nothing of it (an ambient light unless
+  /// ambient_visible, see LightOptions): only sample_li() finds it
+  kHiddenInfinite,
 };
 
 /// A direction toward a light from a reference point, from LightSource::sample_li().
@@ -38,11 +41,13 @@ class LightSource {
   /// Solid-angle density with which sample_li(p) yields the ray from `p` that hit this light's
   /// geometry at `light_hit` (kSurface lights only; 0 otherwise).
   virtual float pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const { return 0.0f; }
-  /// Solid-angle density of sample_li() producing direction `w` (kInfinite lights only).
+  /// Solid-angle density of sample_li() producing direction `w` (kInfinite and
+  /// kHiddenInfinite lights only).
   virtual float pdf_li_escaped(const Vec3& w) const { return 0.0f; }
   /// Radiance leaving `light_hit` toward `wo` (kSurface lights only).
   virtual Rgb le(const SurfaceInteraction& light_hit, const Vec3& wo) const { return Rgb(0.0f); }
-  /// Radiance arriving along a ray that escapes the scene in direction `w` (kInfinite only).
+  /// Radiance arriving along a ray that escapes the scene in direction `w`, were the light
+  /// seen (kInfinite and kHiddenInfinite only; integrators ask only kInfinite lights).
   virtual Rgb le_escaped(const Vec3& w) const { return Rgb(0.0f); }
   /// Total emitted power (or a proxy proportional to it), for choosing lights by power.
   virtual Rgb power() const = 0;

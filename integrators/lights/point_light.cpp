@@ -65,8 +65,11 @@ std::optional<LightLiSample> DirectionalLight::sample_li(const Vec3& p, Vec2 u) 
 
 Rgb DirectionalLight::power() const { return kPi * scene_radius_ * scene_radius_ * radiance_; }
 
-AmbientLight::AmbientLight(const Light& light, float scene_radius)
-    : radiance_(light.color), up_(glm::normalize(light.up)), scene_radius_(scene_radius) {}
+AmbientLight::AmbientLight(const Light& light, float scene_radius, bool visible)
+    : radiance_(light.color),
+      up_(glm::normalize(light.up)),
+      scene_radius_(scene_radius),
+      visible_(visible) {}
 
 std::optional<LightLiSample> AmbientLight::sample_li(const Vec3& p, Vec2 u) const {
   LightLiSample s;

@@ -44,11 +44,15 @@ class DirectionalLight final : public LightSource {
 };
 
 /// Uniform radiance `color` from the hemisphere of directions about `up` (an ambient
-/// "sky"); seen by rays that escape upward. Sampled uniformly over that hemisphere.
+/// "sky"). Sampled uniformly over that hemisphere. `visible`: rays that escape upward see it
+/// (kInfinite); else it is kHiddenInfinite: it lights surfaces through sample_li() only and
+/// escaping rays find black, as in the CS184 homework.
 class AmbientLight final : public LightSource {
  public:
-  AmbientLight(const Light& light, float scene_radius);
-  LightKind kind() const override { return LightKind::kInfinite; }
+  AmbientLight(const Light& light, float scene_radius, bool visible);
+  LightKind kind() const override {
+    return visible_ ? LightKind::kInfinite : LightKind::kHiddenInfinite;
+  }
   std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
   float pdf_li_escaped(const Vec3& w) const override;
   Rgb le_escaped(const Vec3& w) const override;
@@ -58,6 +62,7 @@ class AmbientLight final : public LightSource {
   Rgb radiance_;
   Vec3 up_;
   float scene_radius_;
+  bool visible_;
 };
 
 }  // namespace prism

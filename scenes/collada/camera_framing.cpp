@@ -71,16 +71,18 @@ CameraOptics parse_camera(const Document& doc, pugi::xml_node instance) {
 }
 
 DVec3 homework_view_direction(const DMat4& camera_world) {
-  const DVec3 p = transform_point(camera_world, DVec3(0.0, 0.0, -1.0));
+  // The homework's Vector4D::to3D(): x, y, z of M (0, 0, -1, 1), w dropped.
+  const DVec3 p(camera_world * glm::dvec4(0.0, 0.0, -1.0, 1.0));
   const double length = glm::length(p);
   if (!(length > 1e-12) || !std::isfinite(length)) return kDefaultViewDirection;
   return p / length;
 }
 
-Camera frame_homework(const CameraOptics& optics, const Bounds3& bounds, DVec3 c) {
-  const DVec3 up(kWorldUp);
+Camera frame_homework(const CameraOptics& optics, const Bounds3& bounds, DVec3 c, Vec3 up_axis) {
+  const DVec3 up(up_axis);
   if (glm::length(glm::cross(c, up)) < 1e-4) {
-    c = glm::normalize(c + 0.01 * DVec3(0.0, -1.0, 0.0));
+    const DVec3 tilt = std::abs(up.y) > 0.9 ? DVec3(0.0, 0.0, 1.0) : DVec3(0.0, -1.0, 0.0);
+    c = glm::normalize(c + 0.01 * tilt);
   }
   DVec3 target(0.0);
   double diagonal = 0.0;
@@ -92,7 +94,7 @@ Camera frame_homework(const CameraOptics& optics, const Bounds3& bounds, DVec3 c
   Camera camera;
   camera.target = Vec3(target);
   camera.position = Vec3(target + r * c);
-  camera.up = kWorldUp;
+  camera.up = up_axis;
   camera.hfov_deg = static_cast<float>(optics.hfov_deg);
   camera.vfov_deg = static_cast<float>(optics.vfov_deg);
   apply_clip(optics, camera);

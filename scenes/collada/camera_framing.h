@@ -8,6 +8,7 @@
 #include "core/camera.h"
 #include "core/math.h"
 #include "scenes/collada/document.h"
+#include "scenes/collada/transforms.h"
 
 namespace prism::collada {
 
@@ -26,8 +27,10 @@ struct CameraOptics {
 CameraOptics parse_camera(const Document& doc, pugi::xml_node instance);
 
 /// Where the homework's viewer puts the camera: c = normalize(M * (0, 0, -1, 1)), the point one
-/// unit in front of the camera node taken as a direction from the world origin. Falls back to
-/// kDefaultViewDirection when that point is the origin.
+/// unit in front of the camera node taken as a direction from the world origin. Like the
+/// homework, it reads only M's top three rows (no division by w), so a camera <matrix> short of
+/// its bottom row frames as it does there. Falls back to kDefaultViewDirection when that point
+/// is the origin.
 DVec3 homework_view_direction(const DMat4& camera_world);
 
 /// View direction used when a file has no camera: from the -Y side looking along +Y, which is
@@ -35,11 +38,13 @@ DVec3 homework_view_direction(const DMat4& camera_world);
 inline constexpr DVec3 kDefaultViewDirection{0.0, -1.0, 0.0};
 
 /// The homework framing: target = centre of `bounds` (all geometry), r = 1.5 x its diagonal
-/// length (1 for an empty or single-point box), position = target + r c, up = +Z (the world up,
-/// see transforms.h). A direction (anti)parallel to up is tilted 0.01 rad toward -Y, as the
+/// length (1 for an empty or single-point box), position = target + r c, up = `up` (for
+/// COLLADA +Z, the world up, see transforms.h; model files pass their own). A direction
+/// (anti)parallel to up is tilted 0.01 rad toward -Y (toward +Z when up is along Y), as the
 /// homework's viewer clamps its polar angle away from the pole. zfar grows to r + diagonal if
 /// needed, so the framed scene is never clipped.
-Camera frame_homework(const CameraOptics& optics, const Bounds3& bounds, DVec3 c);
+Camera frame_homework(const CameraOptics& optics, const Bounds3& bounds, DVec3 c,
+                      Vec3 up = kWorldUp);
 
 /// The file's camera as it is: at M's origin, looking down M's -Z, with M's +Y as up.
 /// Throws Error(kInput) at `instance` when M collapses those axes.

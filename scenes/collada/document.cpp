@@ -142,6 +142,16 @@ void Document::fail_at_line(pugi::xml_node node, int line, const std::string& me
   throw Error(ErrorKind::kInput, message, {file_, line, describe(node)});
 }
 
+void Document::warn(pugi::xml_node node, const std::string& message) const {
+  // The same one-line form as an error's what().
+  std::string line =
+      Error(ErrorKind::kInput, message, {file_, line_of(node), describe(node)}).what();
+  // A node instanced several times (<instance_node>) is read, and would warn, each time.
+  if (std::find(warnings_.begin(), warnings_.end(), line) == warnings_.end()) {
+    warnings_.push_back(std::move(line));
+  }
+}
+
 pugi::xml_node Document::find_id(std::string_view id) const {
   const auto it = ids_.find(id);
   return it == ids_.end() ? pugi::xml_node() : it->second;
@@ -238,10 +248,18 @@ double Document::scalar(pugi::xml_node element) const {
 }
 
 Rgb Document::color(pugi::xml_node element) const {
-  const std::vector<float> v = floats(element);
-  if (v.size() != 3 && v.size() != 4) {
-    fail(element,
-         "expected an RGB or RGBA colour (3 or 4 numbers), found " + std::to_string(v.size()));
+  std::vector<float> v = floats(element);
+  // The homework streams the numbers into r, g, b of a zero colour: one or two numbers leave
+  // the rest 0, more than three are never read (an empty colour crashes it).
+  if (v.empty()) fail(element, "expected an RGB or RGBA colour (3 or 4 numbers), found 0");
+  if (v.size() < 3) {
+    warn(element, std::to_string(v.size()) + (v.size() == 1 ? " number" : " numbers") +
+                      ", not 3; the missing ones are read as 0, as the CS184 homework does");
+    v.resize(3, 0.0f);
+  } else if (v.size() > 4) {
+    warn(element,
+         std::to_string(v.size()) +
+             " numbers, not 3 or 4; only the first 3 are read, as the CS184 homework does");
   }
   if (v[0] < 0.0f || v[1] < 0.0f || v[2] < 0.0f) fail(element, "colour components must be >= 0");
   return Rgb(v[0], v[1], v[2]);

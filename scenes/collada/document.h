@@ -36,6 +36,13 @@ class Document {
   /// As fail(node, message) but at an explicit line (e.g. of one token inside a long list).
   [[noreturn]] void fail_at_line(pugi::xml_node node, int line, const std::string& message) const;
 
+  /// Records a tolerated defect located at `node`, formatted like an error's one line:
+  /// `file:line: <element>: message`. The document is const to its readers; the warnings are
+  /// the only state they add to it.
+  void warn(pugi::xml_node node, const std::string& message) const;
+  /// Every warning recorded so far, in order.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
   /// The element with id `id`, or a null node.
   pugi::xml_node find_id(std::string_view id) const;
 
@@ -58,7 +65,9 @@ class Document {
   std::vector<uint32_t> indices(pugi::xml_node element) const;
   /// Exactly one number in `element`, finite and within float range.
   double scalar(pugi::xml_node element) const;
-  /// An RGB colour: three numbers, or four with the alpha ignored; each must be >= 0.
+  /// An RGB colour: three numbers, or four with the alpha ignored; each must be >= 0. Read as
+  /// the CS184 homework reads it: with one or two numbers the missing ones are 0, with more
+  /// than four only the first three count; both warn (warn()). None at all throws.
   Rgb color(pugi::xml_node element) const;
   /// The line of the `index`-th whitespace-separated token of `element`'s text (for errors in
   /// long lists); the element's own line when the token cannot be found.
@@ -77,6 +86,7 @@ class Document {
   std::vector<size_t> line_starts_;  // byte offset at which each line starts
   pugi::xml_document xml_;
   std::unordered_map<std::string_view, pugi::xml_node> ids_;
+  mutable std::vector<std::string> warnings_;
 };
 
 /// A short, single-line description of an element for error messages, such as

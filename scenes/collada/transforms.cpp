@@ -32,13 +32,25 @@ DMat4 up_axis_rotation(const Document& doc) {
   doc.fail(up, "unknown up axis '" + quote(axis) + "' (expected X_UP, Y_UP or Z_UP)");
 }
 
-DMat4 node_transform(const Document& doc, pugi::xml_node node) {
+DMat4 node_transform(const Document& doc, pugi::xml_node node,
+                     std::vector<ShortMatrix>* short_matrices) {
   DMat4 m(1.0);
   for (pugi::xml_node child = node.first_child(); child; child = child.next_sibling()) {
     if (child.type() != pugi::node_element) continue;
     const std::string_view name = child.name();
     if (name == "matrix") {
-      const std::vector<double> v = exactly(doc, child, 16);
+      std::vector<double> v = doc.doubles(child);
+      // The homework streams the numbers into a zero matrix in row order: extra numbers are
+      // never read, missing ones stay 0 (an empty <matrix> crashes it).
+      if (v.empty()) doc.fail(child, "expected 16 numbers, found 0");
+      if (v.size() > 16) {
+        doc.warn(child, std::to_string(v.size()) +
+                            " numbers, not 16; the numbers after the 16th are ignored, as the "
+                            "CS184 homework does");
+      } else if (v.size() < 16) {
+        short_matrices->push_back({child, v.size()});
+      }
+      v.resize(16, 0.0);
       DMat4 local;
       // COLLADA lists rows; GLM indexes [column][row].
       for (int row = 0; row < 4; ++row) {

@@ -155,6 +155,7 @@ inline Image render_scene(const Scene& scene, const std::string& name, const Par
       .camera = camera,
       .sampler_prototype = *sampler,
       .spp = r.spp,
+      .image_height = r.height,
       .adaptive_batch = r.adaptive_batch,
       .adaptive_tolerance = r.adaptive_tolerance,
   };
