@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <set>
@@ -21,6 +22,7 @@
 #include "accel/validation/hit_comparison.h"
 #include "accel/validation/ray_sets.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "scenes/mesh_generator.h"
 #include "tests/support/test_support.h"
 
@@ -301,6 +303,50 @@ TEST(AccelWideBvh, BuildersProduceValidTrees) {
     EXPECT_LE(
         bvh.refs.size(),
         static_cast<size_t>((1.0f + s.spatial_budget) * scene.geometry.primitive_count()) + 1);
+  }
+}
+
+// More references than the builders' parallel thresholds (64k for binning and for SBVH's
+// clipping bins, 4096 for recursion): the parallel paths run, and the tree is the same on one
+// thread as on four, node for node and block for block. ThreadSanitizer runs this test (label
+// `threaded`, docs/RELIABILITY.md) to check those paths.
+TEST(AccelWideBvh, LargeBuildsDoNotDependOnTheThreadCount) {
+  SceneGeometry g;
+  g.meshes.push_back(generated(GeneratedMeshKind::kSoup, 100'000, 11));
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < 2000; ++i) g.spheres.push_back({Vec3(u(rng), u(rng), u(rng)), 0.01f, 0});
+  g.finalize();
+  ASSERT_GT(g.primitive_count(), 64u * 1024u);
+  for (const SplitMethod split : {SplitMethod::kMedian, SplitMethod::kSah, SplitMethod::kSpatial}) {
+    const auto build = [&](int threads) {
+      const ThreadLimit limit(threads);
+      BvhBuildSettings s;
+      s.split = split;
+      const BinaryBvh binary =
+          split == SplitMethod::kSpatial
+              ? build_spatial_split_bvh(g, make_prim_refs(g), s)
+              : build_object_split_bvh(make_prim_refs(g), g.sphere_geom_id(), s);
+      return collapse_to_wide<8>(binary, g);
+    };
+    const WideBvh<8> one = build(1);
+    const WideBvh<8> four = build(4);
+    SCOPED_TRACE(split_name(split));
+    EXPECT_EQ(one.root, four.root);
+    ASSERT_EQ(one.nodes.size(), four.nodes.size());
+    for (size_t i = 0; i < one.nodes.size(); ++i) {
+      ASSERT_EQ(0,
+                std::memcmp(one.nodes[i].bounds, four.nodes[i].bounds, sizeof one.nodes[i].bounds))
+          << "node " << i;
+      ASSERT_EQ(0, std::memcmp(one.nodes[i].child, four.nodes[i].child, sizeof one.nodes[i].child))
+          << "node " << i;
+    }
+    ASSERT_EQ(one.triangle_blocks.size(), four.triangle_blocks.size());
+    EXPECT_EQ(0, std::memcmp(one.triangle_blocks.data(), four.triangle_blocks.data(),
+                             one.triangle_blocks.size() * sizeof(TriangleBlock)));
+    ASSERT_EQ(one.sphere_blocks.size(), four.sphere_blocks.size());
+    EXPECT_EQ(0, std::memcmp(one.sphere_blocks.data(), four.sphere_blocks.data(),
+                             one.sphere_blocks.size() * sizeof(SphereBlock)));
   }
 }
 

@@ -1,8 +1,5 @@
 #include "accel/bench/bench_rays.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -10,6 +7,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/sampler.h"
 
 namespace prism {
@@ -68,17 +66,19 @@ std::vector<SurfacePoint> trace_points(const Scene& scene, const Accelerator& tr
                                        const std::vector<Ray>& rays,
                                        const std::vector<uint32_t>& pixels) {
   std::vector<std::optional<SurfacePoint>> points(rays.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 1024),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      for (size_t i = r.begin(); i < r.end(); ++i) {
-                        const std::optional<Hit> hit = tracer.intersect(rays[i]);
-                        if (!hit) continue;
-                        const SurfaceInteraction si = scene.surface_at(rays[i], *hit);
-                        Vec3 n = si.geometric_normal;
-                        if (glm::dot(n, rays[i].direction) > 0.0f) n = -n;
-                        points[i] = SurfacePoint{si.position, si.position_error, n, pixels[i]};
-                      }
-                    });
+  parallel_for_range(
+      rays.size(),
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          const std::optional<Hit> hit = tracer.intersect(rays[i]);
+          if (!hit) continue;
+          const SurfaceInteraction si = scene.surface_at(rays[i], *hit);
+          Vec3 n = si.geometric_normal;
+          if (glm::dot(n, rays[i].direction) > 0.0f) n = -n;
+          points[i] = SurfacePoint{si.position, si.position_error, n, pixels[i]};
+        }
+      },
+      1024);
   std::vector<SurfacePoint> out;
   out.reserve(points.size());
   for (const auto& p : points) {

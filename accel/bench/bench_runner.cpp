@@ -1,9 +1,5 @@
 #include "accel/bench/bench_runner.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -12,6 +8,8 @@
 
 #include "accel/accelerator.h"
 #include "accel/bvh/cpu_features.h"
+#include "core/parallel.h"
+#include "core/parallel_reduce.h"
 
 namespace prism {
 namespace {
@@ -47,8 +45,8 @@ size_t trace(const Accelerator& accel, const BenchRaySet& set, size_t begin, siz
 }
 
 // One pass over the set.
-PassResult time_pass(const Accelerator& accel, const BenchRaySet& set, tbb::task_arena& arena,
-                     int threads) {
+PassResult time_pass(const Accelerator& accel, const BenchRaySet& set, ThreadArena& arena) {
+  const int threads = arena.threads();
   const double cpu_start = process_cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   size_t hits = 0;
@@ -56,11 +54,9 @@ PassResult time_pass(const Accelerator& accel, const BenchRaySet& set, tbb::task
     hits = trace(accel, set, 0, set.rays.size());
   } else {
     arena.execute([&] {
-      hits = tbb::parallel_reduce(
-          tbb::blocked_range<size_t>(0, set.rays.size(), 2048), size_t{0},
-          [&](const tbb::blocked_range<size_t>& r, size_t n) {
-            return n + trace(accel, set, r.begin(), r.end());
-          },
+      hits = parallel_reduce(
+          0, set.rays.size(), 2048, size_t{0},
+          [&](size_t begin, size_t end, size_t n) { return n + trace(accel, set, begin, end); },
           [](size_t a, size_t b) { return a + b; });
     });
   }
@@ -156,25 +152,25 @@ std::vector<BenchRow> bench_scene(const std::string& scene_name, const SceneGeom
                                   const std::function<void(const std::string&)>& log) {
   std::vector<BenchRow> rows;
   if (backends.empty()) return rows;
-  std::map<int, std::unique_ptr<tbb::task_arena>> arenas;
-  for (int t : settings.threads) arenas[t] = std::make_unique<tbb::task_arena>(t);
+  std::map<int, std::unique_ptr<ThreadArena>> arenas;
+  for (int t : settings.threads) arenas[t] = std::make_unique<ThreadArena>(t);
 
   const Built reference = build_backend(backends[0], geometry, settings.build_repeats);
   std::map<TimingKey, Timing> reference_timing;
 
   auto run_pair = [&](const Accelerator* other, std::map<TimingKey, Timing>& other_timing) {
     for (int threads : settings.threads) {
-      tbb::task_arena& arena = *arenas[threads];
+      ThreadArena& arena = *arenas[threads];
       for (size_t s = 0; s < sets.size(); ++s) {
         const BenchRaySet& set = sets[s];
         if (set.rays.empty()) continue;
         Timing& ref = reference_timing[{threads, s}];
         Timing* oth = other ? &other_timing[{threads, s}] : nullptr;
-        // Warm-up: caches, page faults, TBB's workers.
-        ref.hits = time_pass(*reference.accel, set, arena, threads).hits;
-        if (other) oth->hits = time_pass(*other, set, arena, threads).hits;
+        // Warm-up: caches, page faults, the arena's workers.
+        ref.hits = time_pass(*reference.accel, set, arena).hits;
+        if (other) oth->hits = time_pass(*other, set, arena).hits;
         auto timed = [&](const Accelerator& accel, Timing& timing) {
-          const PassResult r = time_pass(accel, set, arena, threads);
+          const PassResult r = time_pass(accel, set, arena);
           timing.mrays.push_back(r.mrays);
           timing.cpu_mrays.push_back(r.cpu_mrays);
         };

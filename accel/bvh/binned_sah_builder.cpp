@@ -1,14 +1,12 @@
 #include "accel/bvh/binned_sah_builder.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <atomic>
 
 #include "accel/bvh/sah_binning.h"
 #include "core/error.h"
+#include "core/parallel.h"
+#include "core/parallel_reduce.h"
 
 namespace prism {
 namespace {
@@ -27,10 +25,10 @@ sah::RangeInfo range_info(const PrimRef* refs, size_t n) {
     for (size_t i = 0; i < n; ++i) info.add(refs[i]);
     return info;
   }
-  return tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, n, kScanGrain), sah::RangeInfo(),
-      [&](const tbb::blocked_range<size_t>& r, sah::RangeInfo info) {
-        for (size_t i = r.begin(); i < r.end(); ++i) info.add(refs[i]);
+  return parallel_reduce(
+      0, n, kScanGrain, sah::RangeInfo(),
+      [&](size_t begin, size_t end, sah::RangeInfo info) {
+        for (size_t i = begin; i < end; ++i) info.add(refs[i]);
         return info;
       },
       [](sah::RangeInfo a, const sah::RangeInfo& b) {
@@ -85,10 +83,10 @@ class ObjectSplitBuilder {
       bins.add(refs_ + begin, n, map);
       return bins.best(map);
     }
-    return tbb::parallel_reduce(
-               tbb::blocked_range<size_t>(begin, end, kScanGrain), sah::ObjectBins(map.bins),
-               [&](const tbb::blocked_range<size_t>& r, sah::ObjectBins bins) {
-                 bins.add(refs_ + r.begin(), r.size(), map);
+    return parallel_reduce(
+               begin, end, kScanGrain, sah::ObjectBins(map.bins),
+               [&](size_t first, size_t last, sah::ObjectBins bins) {
+                 bins.add(refs_ + first, last - first, map);
                  return bins;
                },
                [&](sah::ObjectBins a, const sah::ObjectBins& b) {
@@ -153,8 +151,8 @@ class ObjectSplitBuilder {
     nodes_[children].set_bounds(left_info.geom.bounds());
     nodes_[children + 1].set_bounds(right_info.geom.bounds());
     if (n > kParallelRecursion) {
-      tbb::parallel_invoke([&] { build_node(children, begin, split, left_info, depth + 1); },
-                           [&] { build_node(children + 1, split, end, right_info, depth + 1); });
+      parallel_invoke([&] { build_node(children, begin, split, left_info, depth + 1); },
+                      [&] { build_node(children + 1, split, end, right_info, depth + 1); });
     } else {
       build_node(children, begin, split, left_info, depth + 1);
       build_node(children + 1, split, end, right_info, depth + 1);

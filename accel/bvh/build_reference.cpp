@@ -1,7 +1,6 @@
 #include "accel/bvh/build_reference.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "core/parallel.h"
 
 namespace prism {
 
@@ -12,23 +11,25 @@ std::vector<PrimRef> make_prim_refs(const SceneGeometry& geometry) {
     const TriangleMesh& mesh = geometry.meshes[m];
     const auto geom_id = static_cast<uint32_t>(m);
     PrimRef* out = refs.data() + offset;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 16 * 1024),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                        for (size_t i = range.begin(); i < range.end(); ++i) {
-                          const glm::uvec3 t = mesh.triangles[i];
-                          Bounds3 b;
-                          b.extend(mesh.positions[t.x]);
-                          b.extend(mesh.positions[t.y]);
-                          b.extend(mesh.positions[t.z]);
-                          PrimRef& r = out[i];
-                          for (int a = 0; a < 3; ++a) {
-                            r.lower[a] = b.lower[a];
-                            r.upper[a] = b.upper[a];
-                          }
-                          r.geom_id = geom_id;
-                          r.prim_id = static_cast<uint32_t>(i);
-                        }
-                      });
+    parallel_for_range(
+        mesh.triangles.size(),
+        [&](size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) {
+            const glm::uvec3 t = mesh.triangles[i];
+            Bounds3 b;
+            b.extend(mesh.positions[t.x]);
+            b.extend(mesh.positions[t.y]);
+            b.extend(mesh.positions[t.z]);
+            PrimRef& r = out[i];
+            for (int a = 0; a < 3; ++a) {
+              r.lower[a] = b.lower[a];
+              r.upper[a] = b.upper[a];
+            }
+            r.geom_id = geom_id;
+            r.prim_id = static_cast<uint32_t>(i);
+          }
+        },
+        16 * 1024);
     offset += mesh.triangles.size();
   }
   for (size_t i = 0; i < geometry.spheres.size(); ++i) {

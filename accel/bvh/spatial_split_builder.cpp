@@ -1,10 +1,5 @@
 #include "accel/bvh/spatial_split_builder.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -12,6 +7,8 @@
 
 #include "accel/bvh/sah_binning.h"
 #include "core/error.h"
+#include "core/parallel.h"
+#include "core/parallel_reduce.h"
 
 namespace prism {
 namespace {
@@ -75,14 +72,16 @@ class SpatialSplitBuilder {
     corners_.resize(total);
     for (size_t m = 0; m < geometry.meshes.size(); ++m) {
       const TriangleMesh& mesh = geometry.meshes[m];
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 16 * 1024),
-                        [&](const tbb::blocked_range<size_t>& r) {
-                          for (size_t i = r.begin(); i < r.end(); ++i) {
-                            const glm::uvec3 t = mesh.triangles[i];
-                            corners_[mesh_offset_[m] + i] = {
-                                mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
-                          }
-                        });
+      parallel_for_range(
+          mesh.triangles.size(),
+          [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) {
+              const glm::uvec3 t = mesh.triangles[i];
+              corners_[mesh_offset_[m] + i] = {mesh.positions[t.x], mesh.positions[t.y],
+                                               mesh.positions[t.z]};
+            }
+          },
+          16 * 1024);
     }
   }
 
@@ -187,10 +186,10 @@ class SpatialSplitBuilder {
     if (refs.size() < kParallelScan) {
       bin_spatial(refs.data(), refs.size(), axes, bins);
     } else {
-      bins = tbb::parallel_reduce(
-          tbb::blocked_range<size_t>(0, refs.size(), kScanGrain), SpatialBins(),
-          [&](const tbb::blocked_range<size_t>& r, SpatialBins b) {
-            bin_spatial(refs.data() + r.begin(), r.size(), axes, b);
+      bins = parallel_reduce(
+          0, refs.size(), kScanGrain, SpatialBins(),
+          [&](size_t begin, size_t end, SpatialBins b) {
+            bin_spatial(refs.data() + begin, end - begin, axes, b);
             return b;
           },
           [nb](SpatialBins x, const SpatialBins& y) {
@@ -406,9 +405,8 @@ class SpatialSplitBuilder {
     nodes_[children].set_bounds(left_info.geom.bounds());
     nodes_[children + 1].set_bounds(right_info.geom.bounds());
     if (n > kParallelRecursion) {
-      tbb::parallel_invoke(
-          [&] { build_node(children, std::move(left), left_info, depth + 1); },
-          [&] { build_node(children + 1, std::move(right), right_info, depth + 1); });
+      parallel_invoke([&] { build_node(children, std::move(left), left_info, depth + 1); },
+                      [&] { build_node(children + 1, std::move(right), right_info, depth + 1); });
     } else {
       build_node(children, std::move(left), left_info, depth + 1);
       build_node(children + 1, std::move(right), right_info, depth + 1);

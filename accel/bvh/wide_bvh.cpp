@@ -1,11 +1,9 @@
 #include "accel/bvh/wide_bvh.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace prism {
 namespace {
@@ -118,10 +116,12 @@ class Collapser {
   void fill_leaves() {
     out_.triangle_blocks.resize(triangle_blocks_);
     out_.sphere_blocks.resize(sphere_blocks_);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, jobs_.size(), 1024),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                        for (size_t j = range.begin(); j < range.end(); ++j) fill_leaf(jobs_[j]);
-                      });
+    parallel_for_range(
+        jobs_.size(),
+        [&](size_t begin, size_t end) {
+          for (size_t j = begin; j < end; ++j) fill_leaf(jobs_[j]);
+        },
+        1024);
   }
 
   void fill_leaf(const LeafJob& job) {

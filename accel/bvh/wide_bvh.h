@@ -27,7 +27,8 @@ struct WideBvh {
 
 /// Collapses `binary` (built over `geometry`) into a W-wide tree: each wide node adopts the
 /// children of its binary descendants with the largest area until it has W children. Leaves
-/// are copied into triangle or sphere blocks (mixed leaves are not allowed). Parallel on oneTBB.
+/// are copied into triangle or sphere blocks (mixed leaves are not allowed). In parallel
+/// (core/parallel.h).
 template <int W>
 WideBvh<W> collapse_to_wide(const BinaryBvh& binary, const SceneGeometry& geometry);
 

@@ -3,8 +3,6 @@
 #include "core/app/validate_command.h"
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -263,11 +261,12 @@ int run_validate_command(const ValidateOptions& given) {
   }
 
   std::vector<HitComparison> verdicts(probes.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, probes.size(), 256),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      for (size_t i = r.begin(); i < r.end(); ++i)
-                        verdicts[i] = judge(probes[i].ray);
-                    });
+  parallel_for_range(
+      probes.size(),
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) verdicts[i] = judge(probes[i].ray);
+      },
+      256);
 
   fmt::print("{} ({} triangles, {} spheres): {} vs {}, {} rule\n", name,
              scene.geometry.triangle_count(), scene.geometry.spheres.size(), options.accel,

@@ -27,7 +27,8 @@ struct ProgramResult {
 };
 
 /// Runs the built prism program with `args` (no shell; arguments passed as they are), with a
-/// time limit in seconds after which it is killed (exit_code is then -9).
+/// time limit in seconds after which it is killed (exit_code is then -9). A sanitizer report
+/// in its stderr (sanitizer builds instrument the program too) fails the calling test.
 ProgramResult run_prism(const std::vector<std::string>& args, int timeout_seconds = 120);
 
 /// Writes `text` to `path`.
