@@ -40,8 +40,14 @@ class ParallelogramLight final : public LightSource {
 /// each triangle's geometric normal as Scene::surface_at() orients it, or on both sides when
 /// `two_sided`. With a `texture`, the radiance at a point is `radiance` times the texture
 /// there: filtered where a ray hits the mesh, unfiltered at points light sampling draws; the
-/// power is based on the texture's mean. Sampled by choosing a triangle by area and a point
-/// uniformly on it (not by the texture's brightness).
+/// power is based on the texture's mean. Sampling (not by the texture's brightness):
+/// - meshes of at most kSolidAngleTriangles triangles (the quads of Cornell boxes): uniform in
+///   the solid angle the mesh subtends at the reference point. A triangle is chosen in
+///   proportion to its solid angle there (0 for triangles seen from their back side when
+///   one-sided) and a direction is drawn uniformly in it (Arvo's spherical triangle sampling);
+///   a triangle whose solid angle is below kMinSphericalSolidAngle (too small for single
+///   precision) or above kMaxSphericalSolidAngle is sampled uniformly in area instead.
+/// - larger meshes: a triangle by area and a point uniformly on it.
 class MeshLight final : public LightSource {
  public:
   MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sided,
@@ -53,7 +59,24 @@ class MeshLight final : public LightSource {
   Rgb power() const override;
   float area() const { return area_; }
 
+  static constexpr size_t kSolidAngleTriangles = 8;
+  static constexpr float kMinSphericalSolidAngle = 3e-4f;
+  static constexpr float kMaxSphericalSolidAngle = 6.22f;
+
  private:
+  /// Per triangle, its weight in the choice of a triangle from `p` (small meshes): its solid
+  /// angle at `p`, 0 when seen from a side that does not emit; returns their sum.
+  float solid_angle_weights(const Vec3& p, float* weights) const;
+  /// Whether triangle `i` with solid angle `omega` at the reference point is sampled in solid
+  /// angle (small meshes).
+  static bool spherical(float omega) {
+    return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle;
+  }
+  /// The sample toward point `q` (barycentrics `b`) of triangle `i`, with area density pdf_area
+  /// there, or an explicit solid-angle density `pdf_solid_angle` when that is > 0.
+  std::optional<LightLiSample> toward_triangle_point(const Vec3& p, size_t i, const Vec3& q, Vec2 b,
+                                                     float pdf_area, float pdf_solid_angle) const;
+
   const TriangleMesh& mesh_;
   Rgb radiance_;
   EmissionTexture texture_;
