@@ -84,20 +84,36 @@ MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sid
   }
   area_ = float(total);
   triangles_ = DiscreteDistribution(areas);
+  if (mesh.triangles.size() <= kSolidAngleTriangles) {
+    for (const glm::uvec3& t : mesh.triangles) {
+      const Vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y], p2 = mesh.positions[t.z];
+      centroids_.push_back((p0 + p1 + p2) / 3.0f);
+      longest_edge2_.push_back(std::max(
+          {glm::dot(p1 - p0, p1 - p0), glm::dot(p2 - p1, p2 - p1), glm::dot(p0 - p2, p0 - p2)}));
+    }
+  }
 }
 
-float MeshLight::solid_angle_weights(const Vec3& p, float* weights) const {
+float MeshLight::triangle_weights(const Vec3& p, float* weights, bool* spherical) const {
   float total = 0.0f;
   for (size_t i = 0; i < mesh_.triangles.size(); ++i) {
     const glm::uvec3 t = mesh_.triangles[i];
+    weights[i] = 0.0f;
+    spherical[i] = false;
     const Vec3 a = mesh_.positions[t.x] - p;
     // From the back of a one-sided emitter (or in its plane) the triangle sends nothing.
     const float side = -glm::dot(normals_[i], a);
-    if (two_sided_ ? side == 0.0f : !(side > 0.0f)) {
-      weights[i] = 0.0f;
-      continue;
+    if (two_sided_ ? side == 0.0f : !(side > 0.0f)) continue;
+    if (longest_edge2_[i] > side * side) {
+      weights[i] = triangle_solid_angle(a, mesh_.positions[t.y] - p, mesh_.positions[t.z] - p);
+      spherical[i] = weights[i] >= kMinSphericalSolidAngle && weights[i] <= kMaxSphericalSolidAngle;
+    } else {
+      // area x cos / distance^2 at the centroid, cos = |side| / distance.
+      const Vec3 c = centroids_[i] - p;
+      const float d2 = glm::dot(c, c);
+      const float w = triangles_.pmf(i) * area_ * std::abs(side) / (d2 * std::sqrt(d2));
+      weights[i] = std::isfinite(w) ? w : 0.0f;
     }
-    weights[i] = triangle_solid_angle(a, mesh_.positions[t.y] - p, mesh_.positions[t.z] - p);
     total += weights[i];
   }
   return total;
@@ -126,7 +142,8 @@ std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
   const size_t n = mesh_.triangles.size();
   if (n <= kSolidAngleTriangles) {
     float omega[kSolidAngleTriangles];
-    const float total = solid_angle_weights(p, omega);
+    bool spherical[kSolidAngleTriangles];
+    const float total = triangle_weights(p, omega, spherical);
     if (!(total > 0.0f)) return std::nullopt;
     // The triangle in proportion to its solid angle, u.x rescaled to [0,1) within it.
     size_t i = 0;
@@ -138,7 +155,7 @@ std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
     const float pmf = omega[i] / total;
     const glm::uvec3 t = mesh_.triangles[i];
     const Vec3 p0 = mesh_.positions[t.x], p1 = mesh_.positions[t.y], p2 = mesh_.positions[t.z];
-    if (!spherical(omega[i])) {
+    if (!spherical[i]) {
       const Vec2 b = square_to_uniform_triangle(v);
       const Vec3 q = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
       return toward_triangle_point(p, i, q, b, pmf / triangles_.pmf(i) / area_, 0.0f);
@@ -184,9 +201,10 @@ float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) cons
     const size_t i = light_hit.prim_id;
     if (i >= n) return 0.0f;
     float omega[kSolidAngleTriangles];
-    const float total = solid_angle_weights(p, omega);
+    bool spherical[kSolidAngleTriangles];
+    const float total = triangle_weights(p, omega, spherical);
     if (!(total > 0.0f) || !(omega[i] > 0.0f)) return 0.0f;
-    if (spherical(omega[i])) return 1.0f / total;
+    if (spherical[i]) return 1.0f / total;
     return area_to_solid_angle_pdf(omega[i] / total / triangles_.pmf(i) / area_, distance,
                                    cos_light);
   }

@@ -41,12 +41,14 @@ class ParallelogramLight final : public LightSource {
 /// `two_sided`. With a `texture`, the radiance at a point is `radiance` times the texture
 /// there: filtered where a ray hits the mesh, unfiltered at points light sampling draws; the
 /// power is based on the texture's mean. Sampling (not by the texture's brightness):
-/// - meshes of at most kSolidAngleTriangles triangles (the quads of Cornell boxes): uniform in
-///   the solid angle the mesh subtends at the reference point. A triangle is chosen in
-///   proportion to its solid angle there (0 for triangles seen from their back side when
-///   one-sided) and a direction is drawn uniformly in it (Arvo's spherical triangle sampling);
-///   a triangle whose solid angle is below kMinSphericalSolidAngle (too small for single
-///   precision) or above kMaxSphericalSolidAngle is sampled uniformly in area instead.
+/// - meshes of at most kSolidAngleTriangles triangles (the quads of Cornell boxes): a triangle
+///   is chosen in proportion to an estimate of its solid angle at the reference point (0 for
+///   triangles seen from a side that does not emit). A triangle close to the point (its longest
+///   edge longer than its plane's distance, Cycles' rule) is weighted by its exact solid angle
+///   and sampled uniformly in it (Arvo's spherical triangles), unless that solid angle lies
+///   outside [kMinSphericalSolidAngle, kMaxSphericalSolidAngle]; a triangle farther away is
+///   weighted by area x cos / distance^2 at its centroid and sampled uniformly in area, which
+///   is nearly as good there and much cheaper.
 /// - larger meshes: a triangle by area and a point uniformly on it.
 class MeshLight final : public LightSource {
  public:
@@ -64,14 +66,11 @@ class MeshLight final : public LightSource {
   static constexpr float kMaxSphericalSolidAngle = 6.22f;
 
  private:
-  /// Per triangle, its weight in the choice of a triangle from `p` (small meshes): its solid
-  /// angle at `p`, 0 when seen from a side that does not emit; returns their sum.
-  float solid_angle_weights(const Vec3& p, float* weights) const;
-  /// Whether triangle `i` with solid angle `omega` at the reference point is sampled in solid
-  /// angle (small meshes).
-  static bool spherical(float omega) {
-    return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle;
-  }
+  /// Per triangle, its weight in the choice of a triangle from `p` (small meshes, see the
+  /// class comment), and in `spherical` whether it is sampled in solid angle (its weight is
+  /// then its solid angle); returns the sum of the weights.
+  float triangle_weights(const Vec3& p, float* weights, bool* spherical) const;
+
   /// The sample toward point `q` (barycentrics `b`) of triangle `i`, with area density pdf_area
   /// there, or an explicit solid-angle density `pdf_solid_angle` when that is > 0.
   std::optional<LightLiSample> toward_triangle_point(const Vec3& p, size_t i, const Vec3& q, Vec2 b,
@@ -81,7 +80,9 @@ class MeshLight final : public LightSource {
   Rgb radiance_;
   EmissionTexture texture_;
   DiscreteDistribution triangles_;
-  std::vector<Vec3> normals_;  ///< per triangle: unit emitting-side normal (the front)
+  std::vector<Vec3> normals_;         ///< per triangle: unit emitting-side normal (the front)
+  std::vector<Vec3> centroids_;       ///< per triangle (small meshes)
+  std::vector<float> longest_edge2_;  ///< per triangle: squared longest edge (small meshes)
   float area_ = 0.0f;
   bool two_sided_;
 };
