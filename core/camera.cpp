@@ -38,29 +38,38 @@ void Camera::validate() const {
 }
 
 Ray Camera::generate_ray(Vec2 film, Vec2 lens) const {
-  const Vec3 forward = glm::normalize(target - position);
-  const Vec3 right = glm::normalize(glm::cross(forward, up));
-  const Vec3 true_up = glm::cross(right, forward);
-  const float sx = (2.0f * film.x - 1.0f) * std::tan(radians(hfov_deg) * 0.5f);
-  const float sy = (1.0f - 2.0f * film.y) * std::tan(radians(vfov_deg) * 0.5f);
+  return CameraRayGenerator(*this).generate_ray(film, lens);
+}
+
+CameraRayGenerator::CameraRayGenerator(const Camera& camera)
+    : camera_(camera),
+      forward_(glm::normalize(camera.target - camera.position)),
+      right_(glm::normalize(glm::cross(forward_, camera.up))),
+      true_up_(glm::cross(right_, forward_)),
+      tan_h_(std::tan(radians(camera.hfov_deg) * 0.5f)),
+      tan_v_(std::tan(radians(camera.vfov_deg) * 0.5f)) {}
+
+Ray CameraRayGenerator::generate_ray(Vec2 film, Vec2 lens) const {
+  const float sx = (2.0f * film.x - 1.0f) * tan_h_;
+  const float sy = (1.0f - 2.0f * film.y) * tan_v_;
   // Direction in camera space has view-axis component 1, so t along it is view depth.
   const Vec3 camera_dir{sx, sy, 1.0f};
   Vec3 origin_cam{0.0f};
   Vec3 dir_cam = camera_dir;
-  if (lens_radius > 0.0f) {
+  if (camera_.lens_radius > 0.0f) {
     // Uniform disk sample by polar mapping; refocus through the plane at focal_distance.
-    const float r = lens_radius * std::sqrt(lens.x);
+    const float r = camera_.lens_radius * std::sqrt(lens.x);
     const float phi = 2.0f * kPi * lens.y;
     origin_cam = Vec3(r * std::cos(phi), r * std::sin(phi), 0.0f);
-    dir_cam = camera_dir * focal_distance - origin_cam;
+    dir_cam = camera_dir * camera_.focal_distance - origin_cam;
   }
   const float length = glm::length(dir_cam);
   const float depth_per_t = dir_cam.z / length;
   Ray ray;
-  ray.origin = position + origin_cam.x * right + origin_cam.y * true_up;
-  ray.direction = glm::normalize(dir_cam.x * right + dir_cam.y * true_up + dir_cam.z * forward);
-  ray.tmin = znear / depth_per_t;
-  ray.tmax = zfar / depth_per_t;
+  ray.origin = camera_.position + origin_cam.x * right_ + origin_cam.y * true_up_;
+  ray.direction = glm::normalize(dir_cam.x * right_ + dir_cam.y * true_up_ + dir_cam.z * forward_);
+  ray.tmin = camera_.znear / depth_per_t;
+  ray.tmax = camera_.zfar / depth_per_t;
   return ray;
 }
 

@@ -31,4 +31,19 @@ struct Camera {
   Ray generate_ray(Vec2 film, Vec2 lens = Vec2(0.5f)) const;
 };
 
+/// Camera::generate_ray() with the terms that depend only on the camera (its basis, the
+/// tangents of the half fields of view) computed once, for render loops: the same rays, bit
+/// for bit, without two tan() calls and three normalisations per ray. Copies the camera.
+class CameraRayGenerator {
+ public:
+  explicit CameraRayGenerator(const Camera& camera);
+  /// Camera::generate_ray(film, lens) of the camera given to the constructor.
+  Ray generate_ray(Vec2 film, Vec2 lens = Vec2(0.5f)) const;
+
+ private:
+  Camera camera_;
+  Vec3 forward_, right_, true_up_;
+  float tan_h_, tan_v_;
+};
+
 }  // namespace prism

@@ -2,20 +2,6 @@
 
 namespace prism {
 
-uint64_t mix_bits(uint64_t v) {
-  v ^= v >> 30;
-  v *= 0xbf58476d1ce4e5b9ULL;
-  v ^= v >> 27;
-  v *= 0x94d049bb133111ebULL;
-  v ^= v >> 31;
-  return v;
-}
-
-float bits_to_unit_float(uint32_t bits) {
-  // 24 significant bits: exactly representable, strictly below 1.
-  return static_cast<float>(bits >> 8) * 0x1p-24f;
-}
-
 void IndependentSampler::start_pixel_sample(glm::ivec2 pixel, uint32_t index) {
   const uint64_t pixel_key = (uint64_t(uint32_t(pixel.x)) << 32) | uint32_t(pixel.y);
   stream_ = mix_bits(mix_bits(pixel_key ^ mix_bits(seed_)) + index);

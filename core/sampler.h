@@ -44,9 +44,20 @@ class IndependentSampler final : public Sampler {
   uint32_t dimension_ = 0;
 };
 
-/// 64-bit finalizer (SplitMix64): a bijective avalanche hash.
-uint64_t mix_bits(uint64_t v);
+/// 64-bit finalizer (SplitMix64): a bijective avalanche hash. Inline: samplers call it for
+/// every dimension of every sample.
+inline uint64_t mix_bits(uint64_t v) {
+  v ^= v >> 30;
+  v *= 0xbf58476d1ce4e5b9ULL;
+  v ^= v >> 27;
+  v *= 0x94d049bb133111ebULL;
+  v ^= v >> 31;
+  return v;
+}
 /// Maps 32 random bits to a float in [0, 1).
-float bits_to_unit_float(uint32_t bits);
+inline float bits_to_unit_float(uint32_t bits) {
+  // 24 significant bits: exactly representable, strictly below 1.
+  return static_cast<float>(bits >> 8) * 0x1p-24f;
+}
 
 }  // namespace prism

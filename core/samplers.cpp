@@ -11,10 +11,15 @@ uint64_t key_of(glm::ivec2 pixel) {
   return (uint64_t(uint32_t(pixel.x)) << 32) | uint32_t(pixel.y);
 }
 
-/// Hash of (pixel, dimension, seed): keys one dimension's permutation and scramble.
-uint64_t dimension_hash(uint64_t pixel_key, uint32_t dimension, uint64_t seed) {
-  return mix_bits(mix_bits(pixel_key ^ mix_bits(seed + 0x9e3779b97f4a7c15ULL)) +
-                  uint64_t(dimension) * 0xd1b54a32d192ed03ULL);
+/// The hash of (pixel, dimension, seed) that keys one dimension's permutation and scramble is
+/// dimension_hash(pixel_hash(key_of(pixel), seed_hash(seed)), dimension): the parts that do
+/// not change from one dimension to the next are computed once per seed and per pixel sample.
+uint64_t seed_hash(uint64_t seed) { return mix_bits(seed + 0x9e3779b97f4a7c15ULL); }
+uint64_t pixel_hash(uint64_t pixel_key, uint64_t seed_hash) {
+  return mix_bits(pixel_key ^ seed_hash);
+}
+uint64_t dimension_hash(uint64_t pixel_hash, uint32_t dimension) {
+  return mix_bits(pixel_hash + uint64_t(dimension) * 0xd1b54a32d192ed03ULL);
 }
 
 uint32_t reverse_bits(uint32_t v) {
@@ -82,7 +87,8 @@ uint32_t owen_scramble(uint32_t v, uint32_t seed) {
 
 // ---- JitteredSampler -------------------------------------------------------------------
 
-JitteredSampler::JitteredSampler(uint64_t seed, int samples_per_pixel) : seed_(seed) {
+JitteredSampler::JitteredSampler(uint64_t seed, int samples_per_pixel)
+    : seed_(seed), seed_hash_(seed_hash(seed)) {
   set_sample_count(samples_per_pixel);
 }
 
@@ -91,13 +97,13 @@ void JitteredSampler::set_sample_count(int samples_per_pixel) {
 }
 
 void JitteredSampler::start_pixel_sample(glm::ivec2 pixel, uint32_t index) {
-  pixel_key_ = key_of(pixel);
+  pixel_hash_ = pixel_hash(key_of(pixel), seed_hash_);
   index_ = index;
   dimension_ = 0;
 }
 
 float JitteredSampler::get_1d() {
-  const uint64_t h = dimension_hash(pixel_key_, dimension_++, seed_);
+  const uint64_t h = dimension_hash(pixel_hash_, dimension_++);
   const uint32_t strata = strata_per_axis_ * strata_per_axis_;
   const uint32_t round = index_ / strata;
   const uint32_t stratum = permutation_element(index_ % strata, strata, mix_bits(h + round));
@@ -106,7 +112,7 @@ float JitteredSampler::get_1d() {
 }
 
 Vec2 JitteredSampler::get_2d() {
-  const uint64_t h = dimension_hash(pixel_key_, dimension_, seed_);
+  const uint64_t h = dimension_hash(pixel_hash_, dimension_);
   dimension_ += 2;
   const uint32_t n = strata_per_axis_;
   const uint32_t strata = n * n;
@@ -127,7 +133,8 @@ std::unique_ptr<Sampler> JitteredSampler::clone() const {
 
 // ---- SobolSampler ----------------------------------------------------------------------
 
-SobolSampler::SobolSampler(uint64_t seed, int samples_per_pixel) : seed_(seed) {
+SobolSampler::SobolSampler(uint64_t seed, int samples_per_pixel)
+    : seed_(seed), seed_hash_(seed_hash(seed)) {
   set_sample_count(samples_per_pixel);
 }
 
@@ -136,7 +143,7 @@ void SobolSampler::set_sample_count(int samples_per_pixel) {
 }
 
 void SobolSampler::start_pixel_sample(glm::ivec2 pixel, uint32_t index) {
-  pixel_key_ = key_of(pixel);
+  pixel_hash_ = pixel_hash(key_of(pixel), seed_hash_);
   index_ = index;
   dimension_ = 0;
 }
@@ -150,13 +157,13 @@ uint32_t SobolSampler::permuted_index(uint64_t h) const {
 }
 
 float SobolSampler::get_1d() {
-  const uint64_t h = dimension_hash(pixel_key_, dimension_++, seed_);
+  const uint64_t h = dimension_hash(pixel_hash_, dimension_++);
   const uint32_t i = permuted_index(h);
   return bits_to_unit_float(owen_scramble(sobol_dimension0(i), uint32_t(h >> 32)));
 }
 
 Vec2 SobolSampler::get_2d() {
-  const uint64_t h = dimension_hash(pixel_key_, dimension_, seed_);
+  const uint64_t h = dimension_hash(pixel_hash_, dimension_);
   dimension_ += 2;
   const uint32_t i = permuted_index(h);
   return {bits_to_unit_float(owen_scramble(sobol_dimension0(i), uint32_t(h >> 32))),

@@ -26,8 +26,9 @@ class JitteredSampler final : public Sampler {
 
  private:
   uint64_t seed_;
+  uint64_t seed_hash_;  ///< the seed's part of the dimension hashes
   uint32_t strata_per_axis_ = 1;
-  uint64_t pixel_key_ = 0;
+  uint64_t pixel_hash_ = 0;  ///< the pixel's and seed's part of the dimension hashes
   uint32_t index_ = 0;
   uint32_t dimension_ = 0;
 };
@@ -52,8 +53,9 @@ class SobolSampler final : public Sampler {
   uint32_t permuted_index(uint64_t dimension_hash) const;
 
   uint64_t seed_;
+  uint64_t seed_hash_;  ///< the seed's part of the dimension hashes
   uint32_t samples_per_pixel_ = 1;
-  uint64_t pixel_key_ = 0;
+  uint64_t pixel_hash_ = 0;  ///< the pixel's and seed's part of the dimension hashes
   uint32_t index_ = 0;
   uint32_t dimension_ = 0;
 };

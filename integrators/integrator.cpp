@@ -30,6 +30,7 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
   const double tolerance = context.adaptive_tolerance;
   // One sampler per tile: cheap to clone, and its values depend only on (pixel, index).
   const std::unique_ptr<Sampler> sampler = context.sampler_prototype.clone();
+  const CameraRayGenerator camera(context.camera);
   // Adaptive sampling may stop after any batch: the sampler stratifies each batch of samples
   // on its own, so that every prefix the stopping rule can choose is well distributed.
   sampler->set_sample_count(batch > 0 ? std::min(batch, spp) : spp);
@@ -42,7 +43,7 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
         sampler->start_pixel_sample(pixel, s);
         const Vec2 film_position = (Vec2(pixel) + sampler->get_2d()) / film_size;
         const Vec2 lens = sampler->get_2d();
-        const Ray ray = context.camera.generate_ray(film_position, lens);
+        const Ray ray = camera.generate_ray(film_position, lens);
         AovSample aovs;
         const Rgb radiance = estimator_->li(ray, *sampler, aovs);
         film.add_sample(pixel, radiance, aovs);

@@ -14,7 +14,8 @@ PathIntegrator::Settings::Settings(const ParamSet& params)
       accumulate(params.get_bool("path.accumulate", true)),
       russian_roulette(params.get_bool("path.rr", true)),
       rr_probability(float(params.get_float("path.rr_probability", 0.0, 0.0, 1.0))),
-      rr_depth(int(params.get_int("path.rr_depth", rr_probability > 0.0f ? 1 : 3, 0, 1 << 20))) {}
+      rr_depth(int(params.get_int("path.rr_depth", rr_probability > 0.0f ? 1 : 3, 0, 1 << 20))),
+      rr_sqrt(params.get_bool("path.rr_sqrt", true)) {}
 
 namespace {
 
@@ -42,7 +43,8 @@ Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) c
   const int n = std::max(1, settings_.light_transport.light_samples);
   Rgb sum(0.0f);
   for (int i = 0; i < n; ++i) {
-    const float u_light = sampler.get_1d();
+    // With a single light the choice needs no sample value (nor a sampler dimension).
+    const float u_light = shading_.lights.size() > 1 ? sampler.get_1d() : 0.0f;
     const Vec2 u = sampler.get_2d();
     float pmf = 0.0f;
     const LightSource* light = shading_.lights.sample(u_light, &pmf);
@@ -144,9 +146,11 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
     if (!is_finite(beta) || max_component(beta) <= 0.0f) break;
 
     if (settings_.russian_roulette && bounces + 1 >= settings_.rr_depth) {
-      const float q = settings_.rr_probability > 0.0f
-                          ? settings_.rr_probability
-                          : std::min(1.0f, max_component(beta * eta_scale));
+      float q = settings_.rr_probability;
+      if (!(q > 0.0f)) {
+        const float m = max_component(beta * eta_scale);
+        q = std::min(1.0f, settings_.rr_sqrt ? std::sqrt(m) : m);
+      }
       if (q < 1.0f) {
         if (sampler.get_1d() >= q) break;
         beta /= q;

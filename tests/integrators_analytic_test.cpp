@@ -303,8 +303,9 @@ TEST(IntegratorsAnalytic, RussianRouletteAndMisAreUnbiased) {
     const char* value;
   };
   uint64_t seed = 50;
-  for (const Variant v : {Variant{"path.rr", "false"}, Variant{"path.mis", "false"},
-                          Variant{"path.rr_probability", "0.6"}}) {
+  for (const Variant v :
+       {Variant{"path.rr", "false"}, Variant{"path.mis", "false"},
+        Variant{"path.rr_probability", "0.6"}, Variant{"path.rr_sqrt", "false"}}) {
     ParamSet params;
     params.set(v.key, v.value);
     TestRender s = settings;

@@ -58,18 +58,22 @@ TriangleMesh tilted_quad() {
 TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
   const TriangleMesh mesh = tilted_quad();
   const MeshLight light(mesh, Rgb(2.0f), false);
-  for (const Vec3& p : {Vec3(0.0f), Vec3(1.5f, -0.5f, 0.5f)}) {
+  // Below the quad (solid angle) and close to it, where its
+  // triangles' solid angles differ most.
+  for (const Vec3& p : {Vec3(0.0f), Vec3(1.5f, -0.5f, 0.5f), Vec3(0.3f, 0.1f, 1.85f)}) {
     const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
       const auto s = light.sample_li(p, u);
       if (!s) return std::nullopt;
       return s->wi;
     };
     const DirectionPdf pdf = [&](const Vec3& w) -> double {
-      for (const glm::uvec3& t : mesh.triangles) {
+      for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+        const glm::uvec3 t = mesh.triangles[i];
         const auto hit =
             hit_triangle(p, w, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
         if (!hit) continue;
         SurfaceInteraction si;
+        si.prim_id = i;
         si.position = p + *hit * w;
         si.geometric_normal = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
                                                         mesh.positions[t.z] - mesh.positions[t.x]));
@@ -82,6 +86,82 @@ TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
     options.phi_bins = 80;
     const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
     EXPECT_EQ(r.impossible_observations, 0u);
+    EXPECT_GT(r.p_value, kSignificance) << r.summary() << " at " << p.x << " " << p.y << " " << p.z;
+  }
+}
+
+TEST(IntegratorsLights, MeshLightFarAwayIsSampledInArea) {
+  // Seen from afar the quad's triangles subtend less than kMinSphericalSolidAngle, too small
+  // for the histogram's cells: 1 / pdf must average to the solid angle instead, and pdf_li()
+  // must repeat sample_li()'s density.
+  const TriangleMesh mesh = tilted_quad();
+  const MeshLight light(mesh, Rgb(2.0f), false);
+  const Vec3 p(2.0f, 1.0f, -60.0f);
+  float omega = 0.0f;
+  for (const glm::uvec3& t : mesh.triangles) {
+    const float o = triangle_solid_angle(mesh.positions[t.x] - p, mesh.positions[t.y] - p,
+                                         mesh.positions[t.z] - p);
+    EXPECT_LT(o, MeshLight::kMinSphericalSolidAngle);
+    omega += o;
+  }
+  IndependentSampler rng(7);
+  double sum = 0.0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    rng.start_pixel_sample({0, 0}, uint32_t(k));
+    const auto s = light.sample_li(p, rng.get_2d());
+    ASSERT_TRUE(s);
+    sum += 1.0 / s->pdf;
+    for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+      const glm::uvec3 t = mesh.triangles[i];
+      const auto hit =
+          hit_triangle(p, s->wi, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
+      if (!hit) continue;
+      SurfaceInteraction si;
+      si.prim_id = i;
+      si.position = p + *hit * s->wi;
+      si.geometric_normal = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                                      mesh.positions[t.z] - mesh.positions[t.x]));
+      EXPECT_NEAR(light.pdf_li(p, si), s->pdf, 1e-3f * s->pdf);
+      break;
+    }
+  }
+  EXPECT_NEAR(sum / n, omega, 0.01 * omega);
+}
+
+TEST(IntegratorsLights, TriangleSolidAngle) {
+  // An octant: a quarter of a hemisphere, whatever the vertices' lengths.
+  EXPECT_NEAR(triangle_solid_angle({2, 0, 0}, {0, 1, 0}, {0, 0, 3}), kPi / 2.0f, 1e-5f);
+  // The two halves of a centred w x h rectangle at distance d add up to
+  // 4 asin(w h / sqrt((w^2 + 4 d^2) (h^2 + 4 d^2))).
+  const float w = 1.2f, h = 0.7f, d = 0.4f;
+  const Vec3 a(-w / 2, -h / 2, d), b(w / 2, -h / 2, d), c(w / 2, h / 2, d), e(-w / 2, h / 2, d);
+  const float expected =
+      4.0f * std::asin(w * h / std::sqrt((w * w + 4 * d * d) * (h * h + 4 * d * d)));
+  EXPECT_NEAR(triangle_solid_angle(a, b, c) + triangle_solid_angle(a, c, e), expected, 1e-5f);
+  EXPECT_NEAR(triangle_solid_angle(a, b, a), 0.0f, 1e-6f);  // degenerate
+}
+
+TEST(IntegratorsLights, SphericalTriangleSamplingMatchesPdf) {
+  // Triangles subtending large and small solid angles, one covering almost a hemisphere.
+  const Vec3 triangles[][3] = {{{-1.0f, -1.0f, 1.0f}, {1.5f, -0.5f, 1.0f}, {0.0f, 1.0f, 1.0f}},
+                               {{0.2f, 0.1f, 2.0f}, {0.6f, 0.2f, 2.5f}, {0.3f, 0.7f, 1.8f}},
+                               {{-9.0f, -9.0f, 0.3f}, {9.0f, -9.0f, 0.3f}, {0.0f, 12.0f, 0.3f}}};
+  for (const auto& v : triangles) {
+    const float omega = triangle_solid_angle(v[0], v[1], v[2]);
+    ASSERT_GT(omega, 0.0f);
+    const Vec3 a = glm::normalize(v[0]), b = glm::normalize(v[1]), c = glm::normalize(v[2]);
+    const DirectionSampler sampler = [&](float, Vec2 u) {
+      return sample_spherical_triangle(a, b, c, omega, u);
+    };
+    const DirectionPdf pdf = [&](const Vec3& w) -> double {
+      return hit_triangle(Vec3(0.0f), w, v[0], v[1], v[2]) ? 1.0 / omega : 0.0;
+    };
+    DirectionalChiSquareOptions options;
+    options.theta_bins = 40;
+    options.phi_bins = 80;
+    const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
+    EXPECT_EQ(r.impossible_observations, 0u) << omega;
     EXPECT_GT(r.p_value, kSignificance) << r.summary();
   }
 }
@@ -203,11 +283,13 @@ TEST(IntegratorsLights, TwoSidedEmittersSampleBothSides) {
   };
   SurfaceInteraction back;  // a point of the quad seen from above: the normal as surface_at
   const DirectionPdf pdf = [&](const Vec3& w) -> double {
-    for (const glm::uvec3& t : mesh.triangles) {
+    for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+      const glm::uvec3 t = mesh.triangles[i];
       const auto hit =
           hit_triangle(behind, w, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
       if (!hit) continue;
       SurfaceInteraction si;
+      si.prim_id = i;
       si.position = behind + *hit * w;
       si.geometric_normal = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
                                                       mesh.positions[t.z] - mesh.positions[t.x]));

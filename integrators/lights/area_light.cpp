@@ -84,16 +84,44 @@ MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sid
   }
   area_ = float(total);
   triangles_ = DiscreteDistribution(areas);
+  if (mesh.triangles.size() <= kSolidAngleTriangles) {
+    for (const glm::uvec3& t : mesh.triangles) {
+      const Vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y], p2 = mesh.positions[t.z];
+      centroids_.push_back((p0 + p1 + p2) / 3.0f);
+      longest_edge2_.push_back(std::max(
+          {glm::dot(p1 - p0, p1 - p0), glm::dot(p2 - p1, p2 - p1), glm::dot(p0 - p2, p0 - p2)}));
+    }
+  }
 }
 
-std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
-  if (!(area_ > 0.0f) || triangles_.empty()) return std::nullopt;
-  float u_remapped = 0.0f;
-  const size_t i = triangles_.sample(u.x, nullptr, &u_remapped);
-  const Vec2 b = square_to_uniform_triangle({u_remapped, u.y});
-  const glm::uvec3 t = mesh_.triangles[i];
-  const Vec3 q = (1.0f - b.x - b.y) * mesh_.positions[t.x] + b.x * mesh_.positions[t.y] +
-                 b.y * mesh_.positions[t.z];
+float MeshLight::triangle_weights(const Vec3& p, float* weights, bool* spherical) const {
+  float total = 0.0f;
+  for (size_t i = 0; i < mesh_.triangles.size(); ++i) {
+    const glm::uvec3 t = mesh_.triangles[i];
+    weights[i] = 0.0f;
+    spherical[i] = false;
+    const Vec3 a = mesh_.positions[t.x] - p;
+    // From the back of a one-sided emitter (or in its plane) the triangle sends nothing.
+    const float side = -glm::dot(normals_[i], a);
+    if (two_sided_ ? side == 0.0f : !(side > 0.0f)) continue;
+    if (longest_edge2_[i] > side * side) {
+      weights[i] = triangle_solid_angle(a, mesh_.positions[t.y] - p, mesh_.positions[t.z] - p);
+      spherical[i] = weights[i] >= kMinSphericalSolidAngle && weights[i] <= kMaxSphericalSolidAngle;
+    } else {
+      // area x cos / distance^2 at the centroid, cos = |side| / distance.
+      const Vec3 c = centroids_[i] - p;
+      const float d2 = glm::dot(c, c);
+      const float w = triangles_.pmf(i) * area_ * std::abs(side) / (d2 * std::sqrt(d2));
+      weights[i] = std::isfinite(w) ? w : 0.0f;
+    }
+    total += weights[i];
+  }
+  return total;
+}
+
+std::optional<LightLiSample> MeshLight::toward_triangle_point(const Vec3& p, size_t i,
+                                                              const Vec3& q, Vec2 b, float pdf_area,
+                                                              float pdf_solid_angle) const {
   Rgb radiance = radiance_;
   if (texture_) {
     // The uv of the point as Scene::surface_at() interpolates it (barycentrics without uvs).
@@ -104,7 +132,60 @@ std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
     }
     radiance *= glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
   }
-  return toward_point(p, q, normals_[i], two_sided_, 1.0f / area_, radiance);
+  std::optional<LightLiSample> s = toward_point(p, q, normals_[i], two_sided_, pdf_area, radiance);
+  if (s && pdf_solid_angle > 0.0f) s->pdf = pdf_solid_angle;
+  return s;
+}
+
+std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
+  if (!(area_ > 0.0f) || triangles_.empty()) return std::nullopt;
+  const size_t n = mesh_.triangles.size();
+  if (n <= kSolidAngleTriangles) {
+    float omega[kSolidAngleTriangles];
+    bool spherical[kSolidAngleTriangles];
+    const float total = triangle_weights(p, omega, spherical);
+    if (!(total > 0.0f)) return std::nullopt;
+    // The triangle in proportion to its solid angle, u.x rescaled to [0,1) within it.
+    size_t i = 0;
+    float below = 0.0f;
+    const float target = u.x * total;
+    while (i + 1 < n && (omega[i] <= 0.0f || below + omega[i] <= target)) below += omega[i++];
+    if (!(omega[i] > 0.0f)) return std::nullopt;
+    const Vec2 v(std::clamp((target - below) / omega[i], 0.0f, 0x1.fffffep-1f), u.y);
+    const float pmf = omega[i] / total;
+    const glm::uvec3 t = mesh_.triangles[i];
+    const Vec3 p0 = mesh_.positions[t.x], p1 = mesh_.positions[t.y], p2 = mesh_.positions[t.z];
+    if (!spherical[i]) {
+      const Vec2 b = square_to_uniform_triangle(v);
+      const Vec3 q = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+      return toward_triangle_point(p, i, q, b, pmf / triangles_.pmf(i) / area_, 0.0f);
+    }
+    const std::optional<Vec3> w = sample_spherical_triangle(
+        glm::normalize(p0 - p), glm::normalize(p1 - p), glm::normalize(p2 - p), omega[i], v);
+    if (!w) return std::nullopt;
+    // The point where w meets the triangle's plane, and its barycentrics.
+    const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+    const Vec3 pv = glm::cross(*w, e2);
+    const float det = glm::dot(e1, pv);
+    if (!(std::abs(det) > 0.0f)) return std::nullopt;
+    const Vec3 o = p - p0;
+    const Vec3 qv = glm::cross(o, e1);
+    const float distance = glm::dot(e2, qv) / det;
+    if (!(distance > 0.0f)) return std::nullopt;
+    const Vec2 b(std::clamp(glm::dot(o, pv) / det, 0.0f, 1.0f),
+                 std::clamp(glm::dot(*w, qv) / det, 0.0f, 1.0f));
+    std::optional<LightLiSample> s =
+        toward_triangle_point(p, i, p + distance * *w, b, 1.0f / area_, 1.0f / total);
+    if (s) s->wi = *w;
+    return s;
+  }
+  float u_remapped = 0.0f;
+  const size_t i = triangles_.sample(u.x, nullptr, &u_remapped);
+  const Vec2 b = square_to_uniform_triangle({u_remapped, u.y});
+  const glm::uvec3 t = mesh_.triangles[i];
+  const Vec3 q = (1.0f - b.x - b.y) * mesh_.positions[t.x] + b.x * mesh_.positions[t.y] +
+                 b.y * mesh_.positions[t.z];
+  return toward_triangle_point(p, i, q, b, 1.0f / area_, 0.0f);
 }
 
 float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const {
@@ -115,6 +196,18 @@ float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) cons
   // sample_li() never returns points seen from a side that does not emit: their density is 0.
   const float cos_light = emitting_cos(light_hit.geometric_normal, -d / distance, two_sided_);
   if (cos_light <= 0.0f) return 0.0f;
+  const size_t n = mesh_.triangles.size();
+  if (n <= kSolidAngleTriangles) {
+    const size_t i = light_hit.prim_id;
+    if (i >= n) return 0.0f;
+    float omega[kSolidAngleTriangles];
+    bool spherical[kSolidAngleTriangles];
+    const float total = triangle_weights(p, omega, spherical);
+    if (!(total > 0.0f) || !(omega[i] > 0.0f)) return 0.0f;
+    if (spherical[i]) return 1.0f / total;
+    return area_to_solid_angle_pdf(omega[i] / total / triangles_.pmf(i) / area_, distance,
+                                   cos_light);
+  }
   return area_to_solid_angle_pdf(1.0f / area_, distance, cos_light);
 }
 

@@ -40,8 +40,16 @@ class ParallelogramLight final : public LightSource {
 /// each triangle's geometric normal as Scene::surface_at() orients it, or on both sides when
 /// `two_sided`. With a `texture`, the radiance at a point is `radiance` times the texture
 /// there: filtered where a ray hits the mesh, unfiltered at points light sampling draws; the
-/// power is based on the texture's mean. Sampled by choosing a triangle by area and a point
-/// uniformly on it (not by the texture's brightness).
+/// power is based on the texture's mean. Sampling (not by the texture's brightness):
+/// - meshes of at most kSolidAngleTriangles triangles (the quads of Cornell boxes): a triangle
+///   is chosen in proportion to an estimate of its solid angle at the reference point (0 for
+///   triangles seen from a side that does not emit). A triangle close to the point (its longest
+///   edge longer than its plane's distance, Cycles' rule) is weighted by its exact solid angle
+///   and sampled uniformly in it (Arvo's spherical triangles), unless that solid angle lies
+///   outside [kMinSphericalSolidAngle, kMaxSphericalSolidAngle]; a triangle farther away is
+///   weighted by area x cos / distance^2 at its centroid and sampled uniformly in area, which
+///   is nearly as good there and much cheaper.
+/// - larger meshes: a triangle by area and a point uniformly on it.
 class MeshLight final : public LightSource {
  public:
   MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sided,
@@ -53,12 +61,28 @@ class MeshLight final : public LightSource {
   Rgb power() const override;
   float area() const { return area_; }
 
+  static constexpr size_t kSolidAngleTriangles = 8;
+  static constexpr float kMinSphericalSolidAngle = 3e-4f;
+  static constexpr float kMaxSphericalSolidAngle = 6.22f;
+
  private:
+  /// Per triangle, its weight in the choice of a triangle from `p` (small meshes, see the
+  /// class comment), and in `spherical` whether it is sampled in solid angle (its weight is
+  /// then its solid angle); returns the sum of the weights.
+  float triangle_weights(const Vec3& p, float* weights, bool* spherical) const;
+
+  /// The sample toward point `q` (barycentrics `b`) of triangle `i`, with area density pdf_area
+  /// there, or an explicit solid-angle density `pdf_solid_angle` when that is > 0.
+  std::optional<LightLiSample> toward_triangle_point(const Vec3& p, size_t i, const Vec3& q, Vec2 b,
+                                                     float pdf_area, float pdf_solid_angle) const;
+
   const TriangleMesh& mesh_;
   Rgb radiance_;
   EmissionTexture texture_;
   DiscreteDistribution triangles_;
-  std::vector<Vec3> normals_;  ///< per triangle: unit emitting-side normal (the front)
+  std::vector<Vec3> normals_;         ///< per triangle: unit emitting-side normal (the front)
+  std::vector<Vec3> centroids_;       ///< per triangle (small meshes)
+  std::vector<float> longest_edge2_;  ///< per triangle: squared longest edge (small meshes)
   float area_ = 0.0f;
   bool two_sided_;
 };

@@ -50,4 +50,45 @@ float power_heuristic(float nf, float f_pdf, float ng, float g_pdf) {
   return 1.0f / (1.0f + r * r);
 }
 
+float triangle_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const float la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+  const float numerator = std::abs(glm::dot(a, glm::cross(b, c)));
+  const float denominator =
+      la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+  const float omega = 2.0f * std::atan2(numerator, denominator);
+  return std::isfinite(omega) && omega > 0.0f ? omega : 0.0f;
+}
+
+std::optional<Vec3> sample_spherical_triangle(const Vec3& a, const Vec3& b, const Vec3& c,
+                                              float solid_angle, Vec2 u) {
+  // Arvo's notation: alpha is the angle of the spherical triangle at a, and cos(c) the cosine
+  // of the arc from a to b. A sub-triangle (a, b, c') of area u.x * solid_angle is found
+  // first, then a point on the arc from b to c', with the cosine of its distance to b uniform.
+  const Vec3 n_ab = glm::cross(a, b), n_ac = glm::cross(a, c);
+  const float l_ab = glm::length(n_ab), l_ac = glm::length(n_ac);
+  if (!(l_ab > 0.0f) || !(l_ac > 0.0f)) return std::nullopt;
+  const float cos_alpha = std::clamp(glm::dot(n_ab, n_ac) / (l_ab * l_ac), -1.0f, 1.0f);
+  const float sin_alpha = safe_sqrt(1.0f - cos_alpha * cos_alpha);
+  const float phi = u.x * solid_angle - std::acos(cos_alpha);
+  const float s = std::sin(phi);
+  const float t = std::cos(phi);
+  const float uu = t - cos_alpha;
+  const float vv = s + sin_alpha * glm::dot(a, b);
+  const float q = ((vv * t - uu * s) * cos_alpha - vv) / ((vv * s + uu * t) * sin_alpha);
+  if (!std::isfinite(q)) return std::nullopt;
+  const float cos_bp = std::clamp(q, -1.0f, 1.0f);
+  const Vec3 c_perp = c - glm::dot(c, a) * a;
+  const float l_c_perp = glm::length(c_perp);
+  if (!(l_c_perp > 0.0f)) return std::nullopt;
+  const Vec3 c_prime = cos_bp * a + safe_sqrt(1.0f - cos_bp * cos_bp) * (c_perp / l_c_perp);
+  const float z = 1.0f - u.y * (1.0f - glm::dot(c_prime, b));
+  const Vec3 cp_perp = c_prime - glm::dot(c_prime, b) * b;
+  const float l_cp_perp = glm::length(cp_perp);
+  if (!(l_cp_perp > 0.0f)) return b;
+  const Vec3 w = z * b + safe_sqrt(1.0f - z * z) * (cp_perp / l_cp_perp);
+  const float lw = glm::length(w);
+  if (!(lw > 0.0f) || !std::isfinite(lw)) return std::nullopt;
+  return w / lw;
+}
+
 }  // namespace prism

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/math.h"
 
@@ -36,6 +37,19 @@ inline float uniform_sphere_pdf() { return kInv4Pi; }
 /// Barycentric coordinates (b1, b2) of a point uniform in area on a triangle:
 /// p = (1 - b1 - b2) p0 + b1 p1 + b2 p2.
 Vec2 square_to_uniform_triangle(Vec2 u);
+
+/// Solid angle that the triangle (a, b, c), given relative to the viewpoint, subtends there
+/// (Van Oosterom and Strackee 1983): in [0, 2 pi), 0 for a degenerate triangle or one seen
+/// edge-on. The vertices need not be unit vectors.
+float triangle_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// A unit direction uniform in solid angle over the spherical triangle with unit vertices
+/// (a, b, c) and solid angle `solid_angle` (triangle_solid_angle(a, b, c), > 0), from u in
+/// [0,1)^2 (Arvo, "Stratified Sampling of Spherical Triangles", 1995): density
+/// 1 / solid_angle. Accurate in single precision for solid angles of about 1e-4 and more
+/// (smaller ones are better sampled in area). Nothing when the triangle is degenerate.
+std::optional<Vec3> sample_spherical_triangle(const Vec3& a, const Vec3& b, const Vec3& c,
+                                              float solid_angle, Vec2 u);
 
 /// Veach's power heuristic (beta = 2) for `nf` samples of density `f_pdf` against `ng` samples
 /// of density `g_pdf`. Infinite f_pdf (a delta strategy) gives 1.
