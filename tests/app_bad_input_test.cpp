@@ -3,9 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include "tests/support/app_test_helpers.h"
+#include "tests/support/child_process.h"
 #include "tests/support/test_support.h"
 
 namespace prism::test {
@@ -173,15 +172,18 @@ TEST_F(AppBadInput, OutputFolderMissing) {
 
 TEST_F(AppBadInput, OutputFolderReadOnly) {
   namespace fs = std::filesystem;
-  fs::permissions(dirs_.out, fs::perms::owner_read | fs::perms::owner_exec);
-  // Root ignores permission bits, so the case cannot be produced there.
-  const auto probe = dirs_.out / "probe";
-  if (std::ofstream(probe)) {
-    fs::remove(probe);
-    GTEST_SKIP() << "permissions are not enforced for this user (root?): read-only output "
-                    "folder case skipped";
-  }
-  const auto r = render({tiny_scene()});
+  // The case's folders readable by the user prism may run as (nobody, below).
+  fs::permissions(dirs_.root, fs::perms::others_read | fs::perms::others_exec,
+                  fs::perm_options::add);
+  fs::permissions(dirs_.in, fs::perms::all);
+  fs::permissions(dirs_.out, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                 fs::perms::group_exec | fs::perms::others_read |
+                                 fs::perms::others_exec);
+  // Root ignores permission bits: prism then runs as nobody (drop_root), for whom they hold.
+  const auto r = run_prism_limited({"render", tiny_scene(), "-r", "32", "24", "-s", "1", "-f",
+                                    out_file().string()},
+                                   ProcessLimits{.drop_root = true})
+                     .result;
   expect_one_line_error(r, 3, {dirs_.out.string()});
   expect_nothing_written();
 }
