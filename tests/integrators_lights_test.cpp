@@ -44,6 +44,23 @@ std::optional<float> hit_triangle(const Vec3& o, const Vec3& d, const Vec3& a, c
   return t > 0.0f ? std::optional<float>(t) : std::nullopt;
 }
 
+/// The first triangle of `mesh` that the ray from `p` along `w` hits, as the surface point a
+/// light's pdf_li() takes (prim_id, position, geometric normal), or nothing.
+std::optional<SurfaceInteraction> hit_mesh(const TriangleMesh& mesh, const Vec3& p, const Vec3& w) {
+  for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+    const glm::uvec3 t = mesh.triangles[i];
+    const Vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+    const auto hit = hit_triangle(p, w, a, b, c);
+    if (!hit) continue;
+    SurfaceInteraction si;
+    si.prim_id = i;
+    si.position = p + *hit * w;
+    si.geometric_normal = glm::normalize(glm::cross(b - a, c - a));
+    return si;
+  }
+  return std::nullopt;
+}
+
 TriangleMesh tilted_quad() {
   TriangleMesh mesh;
   mesh.name = "emitter";
@@ -67,19 +84,8 @@ TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
       return s->wi;
     };
     const DirectionPdf pdf = [&](const Vec3& w) -> double {
-      for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
-        const glm::uvec3 t = mesh.triangles[i];
-        const auto hit =
-            hit_triangle(p, w, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
-        if (!hit) continue;
-        SurfaceInteraction si;
-        si.prim_id = i;
-        si.position = p + *hit * w;
-        si.geometric_normal = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
-                                                        mesh.positions[t.z] - mesh.positions[t.x]));
-        return light.pdf_li(p, si);
-      }
-      return 0.0;
+      const auto si = hit_mesh(mesh, p, w);
+      return si ? light.pdf_li(p, *si) : 0.0;
     };
     DirectionalChiSquareOptions options;
     options.theta_bins = 40;  // the light subtends a small solid angle
@@ -112,18 +118,8 @@ TEST(IntegratorsLights, MeshLightFarAwayIsSampledInArea) {
     const auto s = light.sample_li(p, rng.get_2d());
     ASSERT_TRUE(s);
     sum += 1.0 / s->pdf;
-    for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
-      const glm::uvec3 t = mesh.triangles[i];
-      const auto hit =
-          hit_triangle(p, s->wi, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
-      if (!hit) continue;
-      SurfaceInteraction si;
-      si.prim_id = i;
-      si.position = p + *hit * s->wi;
-      si.geometric_normal = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
-                                                      mesh.positions[t.z] - mesh.positions[t.x]));
-      EXPECT_NEAR(light.pdf_li(p, si), s->pdf, 1e-3f * s->pdf);
-      break;
+    if (const auto si = hit_mesh(mesh, p, s->wi)) {
+      EXPECT_NEAR(light.pdf_li(p, *si), s->pdf, 1e-3f * s->pdf);
     }
   }
   EXPECT_NEAR(sum / n, omega, 0.01 * omega);
@@ -283,20 +279,10 @@ TEST(IntegratorsLights, TwoSidedEmittersSampleBothSides) {
   };
   SurfaceInteraction back;  // a point of the quad seen from above: the normal as surface_at
   const DirectionPdf pdf = [&](const Vec3& w) -> double {
-    for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
-      const glm::uvec3 t = mesh.triangles[i];
-      const auto hit =
-          hit_triangle(behind, w, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
-      if (!hit) continue;
-      SurfaceInteraction si;
-      si.prim_id = i;
-      si.position = behind + *hit * w;
-      si.geometric_normal = glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
-                                                      mesh.positions[t.z] - mesh.positions[t.x]));
-      back = si;
-      return light.pdf_li(behind, si);
-    }
-    return 0.0;
+    const auto si = hit_mesh(mesh, behind, w);
+    if (!si) return 0.0;
+    back = *si;
+    return light.pdf_li(behind, *si);
   };
   DirectionalChiSquareOptions options;
   options.theta_bins = 40;
