@@ -21,23 +21,13 @@ namespace fs = std::filesystem;
 
 const fs::path kSpheres = fs::path(PRISM_SOURCE_DIR) / "scenes" / "data" / "cornell_spheres.json";
 
-ImageFileContents render(const fs::path& scene, const fs::path& out,
-                         const std::vector<std::string>& args) {
-  std::vector<std::string> all = {"render", "-q", "--exr-type", "float", scene.string(),
-                                  "-r",     "64", "48",         "-f",    out.string()};
-  all.insert(all.end(), args.begin(), args.end());
-  const ProgramResult r = run_prism(all);
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return read_image_file(out);
-}
-
 /// Renders `scene` whole and cropped to each of `crops` (X0 Y0 X1 Y1, with `crop_args` added)
 /// and expects every crop to be the full render's pixels, placed where they belong.
 void expect_crops_are_the_full_renders_pixels(
     const fs::path& scene, const std::vector<std::string>& args,
     const std::vector<std::pair<std::array<int, 4>, std::vector<std::string>>>& crops) {
   TestDirs dirs("crop");
-  const Image full = render(scene, dirs.out / "full.exr", args).image;
+  const Image full = render_small_float_exr(scene, dirs.out / "full.exr", args).image;
   ASSERT_EQ(full.width, 64);
   ASSERT_EQ(full.height, 48);
   for (const auto& [crop, crop_args] : crops) {
@@ -49,7 +39,7 @@ void expect_crops_are_the_full_renders_pixels(
     all.push_back("--crop");
     for (int v : crop) all.push_back(std::to_string(v));
     all.insert(all.end(), crop_args.begin(), crop_args.end());
-    const ImageFileContents file = render(
+    const ImageFileContents file = render_small_float_exr(
         scene, dirs.out / ("crop_" + std::to_string(x0) + "_" + std::to_string(y0) + ".exr"), all);
     EXPECT_EQ(file.attribute("prism:crop"), name);
     // The data window at the crop, inside the full display window.

@@ -26,18 +26,6 @@ namespace fs = std::filesystem;
 
 const fs::path kSpheres = fs::path(PRISM_SOURCE_DIR) / "scenes" / "data" / "cornell_spheres.json";
 
-/// Renders `scene` at 64 x 48 into `out` (float EXR: every bit of the film's means), with
-/// `args` added; expects exit 0.
-ImageFileContents render(const fs::path& scene, const fs::path& out,
-                         const std::vector<std::string>& args) {
-  std::vector<std::string> all = {"render",     "-q",    "-r",           "64", "48",
-                                  "--exr-type", "float", scene.string(), "-f", out.string()};
-  all.insert(all.end(), args.begin(), args.end());
-  const ProgramResult r = run_prism(all);
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return read_image_file(out);
-}
-
 /// The sample count of every pixel.
 std::vector<float> sample_counts(const Image& image) {
   const std::vector<float> counts = channel_values(image, "sampleCount.Y");
@@ -64,7 +52,7 @@ void expect_same_bits_for_passes_and_threads(const fs::path& scene, int spp,
     }
     const fs::path out =
         dirs.out / ("p" + std::to_string(pass_samples) + "_t" + std::to_string(threads) + ".exr");
-    const ImageFileContents file = render(scene, out, args);
+    const ImageFileContents file = render_small_float_exr(scene, out, args);
     const int passes = (spp + pass_samples - 1) / pass_samples;
     EXPECT_EQ(file.attribute("prism:passes"),
               std::to_string(passes) + " of " + std::to_string(passes));
@@ -93,9 +81,9 @@ TEST(AppPasses, AdaptiveSamplingIsTheSameForAnyPassSizeAndThreadCount) {
                                           {"-a", "4", "0.05"});
   // ... and adaptive sampling did stop pixels early, at a whole batch.
   TestDirs dirs("passes_adaptive");
-  const Image image =
-      render(kSpheres, dirs.out / "a.exr", {"-s", "32", "-a", "4", "0.05", "--pass-samples", "3"})
-          .image;
+  const Image image = render_small_float_exr(kSpheres, dirs.out / "a.exr",
+                                             {"-s", "32", "-a", "4", "0.05", "--pass-samples", "3"})
+                          .image;
   size_t early = 0;
   for (float count : sample_counts(image)) {
     EXPECT_GE(count, 4.0f);
@@ -121,7 +109,7 @@ void expect_time_limit_stops_at_a_whole_pass(const fs::path& scene,
   // that even a fast machine is far from done at the limit.
   std::vector<std::string> args = {"-s", "256", "--time-limit", "0.05", "-t", "1"};
   args.insert(args.end(), extra.begin(), extra.end());
-  const ImageFileContents stopped = render(scene, dirs.out / "stopped.exr", args);
+  const ImageFileContents stopped = render_small_float_exr(scene, dirs.out / "stopped.exr", args);
   EXPECT_EQ(stopped.attribute("prism:stoppedBy"), "time limit");
   int k = -1, n = -1;
   ASSERT_EQ(std::sscanf(stopped.attribute("prism:passes").c_str(), "%d of %d", &k, &n), 2)
@@ -139,7 +127,7 @@ void expect_time_limit_stops_at_a_whole_pass(const fs::path& scene,
   // The same render limited to the samples it took: a part file whose first image is the image.
   std::vector<std::string> part_args = {"-s", "256", "--samples", "0", std::to_string(taken)};
   part_args.insert(part_args.end(), extra.begin(), extra.end());
-  const ImageFileContents part = render(scene, dirs.out / "part.exr", part_args);
+  const ImageFileContents part = render_small_float_exr(scene, dirs.out / "part.exr", part_args);
   EXPECT_EQ(part.attribute("prism:stoppedBy"), "-");
   EXPECT_EQ(part.attribute("prism:samples"), "0 " + std::to_string(taken));
   EXPECT_TRUE(same_bits(stopped.image, part.image));

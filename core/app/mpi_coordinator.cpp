@@ -10,15 +10,12 @@
 #include "core/app/mpi_world.h"
 #include "core/app/tile_lanes.h"
 #include "core/error.h"
+#include "core/timing.h"
 
 namespace prism {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// Whether every pixel of `tile` has taken every sample of `samples`.
 bool tile_complete(const Film& film, const Tile& tile, SampleRange samples) {

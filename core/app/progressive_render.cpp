@@ -4,15 +4,12 @@
 #include <chrono>
 
 #include "core/parallel.h"
+#include "core/timing.h"
 
 namespace prism {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// How far tile `t` of the schedule got: every pixel of a tile shares its progress.
 uint32_t tile_progress(const RenderSchedule& schedule, const Film& film, int t) {

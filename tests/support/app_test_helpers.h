@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "color/color_pipeline.h"
+#include "color/image_output.h"
 #include "tests/support/test_support.h"
 
 namespace prism::test {
@@ -154,6 +155,19 @@ inline void write_pfm(const std::filesystem::path& path, int width, int height,
     out.write(reinterpret_cast<const char*>(values.data() + size_t(y) * width * 3),
               std::streamsize(sizeof(float) * width * 3));
   }
+}
+
+/// Renders `scene` at 64 x 48 into `out` (float EXR: every bit of the film's means), with
+/// `args` added, expects exit 0 and returns the file read back.
+inline ImageFileContents render_small_float_exr(const std::filesystem::path& scene,
+                                                const std::filesystem::path& out,
+                                                const std::vector<std::string>& args) {
+  std::vector<std::string> all = {"render",     "-q",    "-r",           "64", "48",
+                                  "--exr-type", "float", scene.string(), "-f", out.string()};
+  all.insert(all.end(), args.begin(), args.end());
+  const ProgramResult r = run_prism(all);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return read_image_file(out);
 }
 
 }  // namespace prism::test
