@@ -107,6 +107,26 @@ void check_output_space(const OCIO::ConstConfigRcPtr& config, const std::string&
   }
 }
 
+#if defined(__SANITIZE_THREAD__)
+/// ThreadSanitizer builds (docs/RELIABILITY.md): OpenImageIO's own thread pool (MIP-mapping
+/// textures, converting and writing images) and OpenEXR's are not instrumented, so TSan cannot
+/// see how they hand results back; with no pool their work runs on the caller, where TSan sees
+/// every access prism makes. Other builds leave OpenImageIO's threads alone.
+[[gnu::noinline]] bool configure_openimageio_threads() {
+  OIIO::attribute("threads", 1);
+  OIIO::attribute("exr_threads", -1);
+  return true;
+}
+
+/// configure_openimageio_threads(), once per process. TSan names a thread by the call sites on
+/// its creation stack, so every thread started below this function's call is OpenImageIO's:
+/// tests/support/tsan.supp names it for the worker OpenImageIO stops without joining.
+[[gnu::noinline]] void keep_openimageio_on_the_calling_thread() {
+  static const bool configured = configure_openimageio_threads();
+  (void)configured;
+}
+#endif
+
 Rgb apply_one(const OCIO::ConstCPUProcessorRcPtr& processor, const Rgb& color) {
   float v[3] = {color.x, color.y, color.z};
   processor->applyRGB(v);
@@ -117,12 +137,7 @@ Rgb apply_one(const OCIO::ConstCPUProcessorRcPtr& processor, const Rgb& color) {
 
 ColorPipeline::ColorPipeline(const ColorOptions& options) : impl_(std::make_unique<Impl>()) {
 #if defined(__SANITIZE_THREAD__)
-  // ThreadSanitizer builds (docs/RELIABILITY.md): OpenImageIO's own thread pool (MIP-mapping
-  // textures, converting and writing images) is not instrumented, so TSan cannot see how it
-  // hands results back; on one thread its work runs on the caller, where TSan sees every
-  // access prism makes. Other builds leave OpenImageIO's threads alone.
-  OIIO::attribute("threads", 1);
-  OIIO::attribute("exr_threads", 1);
+  keep_openimageio_on_the_calling_thread();
 #endif
   Impl& d = *impl_;
   d.loaded = load_config(options.ocio_config);
