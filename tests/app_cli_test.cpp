@@ -15,11 +15,6 @@
 namespace prism::test {
 namespace {
 
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(AppCli, HomeworkStyleArgumentsRenderWithoutTheRenderWord) {
   const TestDirs dirs("app_homework");
   const std::string scene = dirs.scene("tiny.dae", kTinyCollada);

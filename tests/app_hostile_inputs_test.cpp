@@ -80,11 +80,6 @@ std::string expand(std::string text, const TestDirs& dirs) {
   return text;
 }
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 /// Runs the setup steps of a case: files to write, copy, truncate, render, folders to make and
 /// permissions to set. A step that fails fails the test.
 void run_setup(const json& steps, const TestDirs& dirs) {

@@ -19,6 +19,8 @@
 
 namespace prism {
 namespace {
+
+using test::read_bytes;
 namespace fs = std::filesystem;
 
 class ColorImageOutput : public ::testing::Test {
@@ -65,13 +67,6 @@ Image make_image(int width, int height, uint32_t seed = 7) {
 const ImageMetadata metadata_pairs = {{"prism:version", "0.1.0"},
                                       {"prism:scene", "scenes/cornell.json"},
                                       {"prism:integrator", "path"}};
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Files in `dir` other than `keep` (temporaries left behind would show up here).
 std::vector<std::string> other_files(const fs::path& dir, const std::string& keep) {

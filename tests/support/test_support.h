@@ -34,6 +34,9 @@ ProgramResult run_prism(const std::vector<std::string>& args, int timeout_second
 /// Writes `text` to `path`.
 void write_text(const std::filesystem::path& path, const std::string& text);
 
+/// The whole content of `path`, byte for byte (empty when it cannot be read).
+std::string read_bytes(const std::filesystem::path& path);
+
 }  // namespace prism::test
 
 /// Skips the current test with a message when the shared CS184 scenes are absent.
