@@ -37,6 +37,19 @@ class SceneBuilder {
   SceneBuilder(const Document& doc, Scene& scene)
       : doc_(doc), scene_(scene), materials_(doc, scene.materials) {}
 
+  /// Fails naming `visual_scene` when building its nodes would visit more than kMaxNodeVisits
+  /// of them, counted before anything is built: a fan-out of <instance_node>s (each node
+  /// instancing the next twice: 2^40 visits through 40 nodes) is refused in time linear in the
+  /// file. Each node's count is computed once; a node met again while its own count is open (a
+  /// cycle) counts one here, and visit() reports the cycle.
+  void check_visit_count(pugi::xml_node visual_scene) {
+    std::unordered_map<const void*, size_t> counts;
+    if (count_visits(visual_scene, counts) - 1 > kMaxNodeVisits) {
+      doc_.fail(visual_scene,
+                "the scene instantiates more than " + std::to_string(kMaxNodeVisits) + " nodes");
+    }
+  }
+
   void visit(pugi::xml_node node, const DMat4& parent, int depth) {
     if (depth > kMaxNodeDepth) {
       doc_.fail(node, "nodes nest deeper than " + std::to_string(kMaxNodeDepth) + " levels");
@@ -93,6 +106,29 @@ class SceneBuilder {
     }
     doc_.warn(short_matrix.element,
               count + "; the missing ones are read as 0, as the CS184 homework does");
+  }
+
+  // Visits of `node` (counting itself) and of the nodes it holds and instances, saturating
+  // just above kMaxNodeVisits + 1.
+  size_t count_visits(pugi::xml_node node, std::unordered_map<const void*, size_t>& counts,
+                      int depth = 1) {
+    const auto [entry, inserted] = counts.try_emplace(node.internal_object(), 1);
+    if (!inserted || depth > kMaxNodeDepth) return entry->second;  // done, open (a cycle) or deep
+    size_t total = 1;
+    for (pugi::xml_node child = node.first_child(); child; child = child.next_sibling()) {
+      const std::string_view name = child.name();
+      pugi::xml_node target;
+      if (name == "node") {
+        target = child;
+      } else if (name == "instance_node") {
+        target = doc_.resolve(child, "url", "node");
+      } else {
+        continue;
+      }
+      total = std::min(total + count_visits(target, counts, depth + 1), kMaxNodeVisits + 2);
+    }
+    counts[node.internal_object()] = total;
+    return total;
   }
 
   // An <instance_geometry> or <instance_node> (which may hold geometry) in `node` or the
@@ -200,6 +236,7 @@ Scene load_collada(const std::filesystem::path& path, const SceneLoadOptions& op
   const pugi::xml_node visual_scene = doc.resolve(instance, "url", "visual_scene");
 
   SceneBuilder builder(doc, scene);
+  builder.check_visit_count(visual_scene);
   for (pugi::xml_node node : visual_scene.children("node")) builder.visit(node, up_rotation, 1);
 
   mark_duplicate_area_lights(scene.lights, scene.geometry, scene.materials);
