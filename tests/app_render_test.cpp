@@ -218,7 +218,9 @@ TEST(AppRender, AmbientLightIsASkyOnlyWhenAsked) {
           if (exr.image.at(x, y, depth) == 0.0f) {
             ++escaped;
             sky += v == 0.5f;
-            if (!visible) EXPECT_EQ(v, 0.0f) << x << "," << y;
+            if (!visible) {
+              EXPECT_EQ(v, 0.0f) << x << "," << y;
+            }
           } else {
             lit += v > 0.0f;
           }
@@ -226,7 +228,9 @@ TEST(AppRender, AmbientLightIsASkyOnlyWhenAsked) {
       }
       EXPECT_GT(escaped, 0);
       EXPECT_GT(lit, 0);
-      if (visible) EXPECT_GT(sky, 0);
+      if (visible) {
+        EXPECT_GT(sky, 0);
+      }
     }
   }
 }
