@@ -2,6 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <type_traits>
+#include <utility>
+
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/scene_hash.h"
@@ -16,6 +23,55 @@ json optional_json(const std::optional<T>& value) {
   return value ? json(*value) : json(nullptr);
 }
 
+template <typename T>
+struct is_pair : std::false_type {};
+template <typename A, typename B>
+struct is_pair<std::pair<A, B>> : std::true_type {};
+
+/// `j` as a T, or nothing when it is not one: integers must be JSON integers within T's range,
+/// floats finite JSON numbers within T's range, pairs two-element arrays of such. (nlohmann's own
+/// conversion casts a float to an int, or a huge double to a float, unchecked: undefined
+/// behaviour on a damaged or hostile state file.)
+template <typename T>
+std::optional<T> checked_value(const json& j) {
+  if constexpr (std::is_same_v<T, bool>) {
+    if (!j.is_boolean()) return std::nullopt;
+    return j.get<bool>();
+  } else if constexpr (std::is_integral_v<T>) {
+    if (j.is_number_unsigned()) {
+      const auto v = j.get<uint64_t>();
+      if (v > uint64_t(std::numeric_limits<T>::max())) return std::nullopt;
+      return static_cast<T>(v);
+    }
+    if (!j.is_number_integer()) return std::nullopt;
+    const auto v = j.get<int64_t>();
+    if (v < int64_t(std::numeric_limits<T>::lowest()) ||
+        v > int64_t(std::numeric_limits<T>::max())) {
+      return std::nullopt;
+    }
+    return static_cast<T>(v);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    if (!j.is_number()) return std::nullopt;
+    const double v = j.get<double>();
+    if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<T>::max())) {
+      return std::nullopt;
+    }
+    return static_cast<T>(v);
+  } else if constexpr (is_pair<T>::value) {
+    if (!j.is_array() || j.size() != 2) return std::nullopt;
+    auto first = checked_value<typename T::first_type>(j[0]);
+    auto second = checked_value<typename T::second_type>(j[1]);
+    if (!first || !second) return std::nullopt;
+    return T(*first, *second);
+  } else {
+    try {
+      return j.get<T>();
+    } catch (const json::exception&) {
+      return std::nullopt;
+    }
+  }
+}
+
 /// Reads JSON fields with one-line errors naming the source and the key.
 class Fields {
  public:
@@ -28,11 +84,9 @@ class Fields {
   T get(const std::string& key) const {
     const auto it = object_.find(key);
     if (it == object_.end()) fail(key, "is missing");
-    try {
-      return it->template get<T>();
-    } catch (const json::exception&) {
-      fail(key, "has the wrong type");
-    }
+    std::optional<T> value = checked_value<T>(*it);
+    if (!value) fail(key, "has the wrong type or is out of range");
+    return std::move(*value);
   }
   template <typename T>
   T get_or(const std::string& key, T fallback) const {
