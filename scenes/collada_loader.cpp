@@ -50,6 +50,7 @@ class SceneBuilder {
     }
   }
 
+  /// Builds `node` and what it holds and instances. check_visit_count() has bounded the visits.
   void visit(pugi::xml_node node, const DMat4& parent, int depth) {
     if (depth > kMaxNodeDepth) {
       doc_.fail(node, "nodes nest deeper than " + std::to_string(kMaxNodeDepth) + " levels");
@@ -57,10 +58,6 @@ class SceneBuilder {
     if (std::find(path_.begin(), path_.end(), node) != path_.end()) {
       doc_.fail(node, "node '" + std::string(node.attribute("id").value()) +
                           "' instances itself through <instance_node> (a cycle)");
-    }
-    if (++visits_ > kMaxNodeVisits) {
-      doc_.fail(node,
-                "the scene instantiates more than " + std::to_string(kMaxNodeVisits) + " nodes");
     }
     path_.push_back(node);
     std::vector<ShortMatrix> short_matrices;
@@ -213,7 +210,6 @@ class SceneBuilder {
   Scene& scene_;
   MaterialTable materials_;
   std::unordered_map<size_t, std::unique_ptr<Geometry>> geometries_;  // by xml_node hash
-  size_t visits_ = 0;
   std::vector<pugi::xml_node> path_;  // the nodes being visited, outermost first (cycles)
   size_t triangles_ = 0;
   pugi::xml_node camera_instance_;
