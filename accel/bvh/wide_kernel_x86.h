@@ -343,19 +343,6 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
       vandnot(vor(vor(L::sign_mask(outside), special), out_of_range), vcmp<_CMP_NEQ_UQ>(det, zero));
   const int mask = vmask(ok);
   if (mask == 0 && special_mask == 0) return false;
-  if (any_hit && mask != 0) {
-    // A shadow ray needs only whether some lane is hit. A lane whose t, with its error bound,
-    // lies strictly inside (tmin, tmax) and whose determinant cannot be zero in double (the
-    // float one is off by at most about 4 eps det_error) is hit whatever t the scalar code would
-    // compute: no double-precision test for it, and the answer is still brute force's.
-    const V certain = vand(vand(vcmp<_CMP_GT_OQ>(vsub(t, t_error), L::narrow(ray.tmin)),
-                                vcmp<_CMP_LT_OQ>(vadd(t, t_error), L::set1(tmax))),
-                           vcmp<_CMP_GT_OQ>(vabs(det), vmul(L::set1(kTErrorScale), det_error)));
-    for (unsigned z = static_cast<unsigned>(vmask(vand(ok, certain))); z != 0; z &= z - 1) {
-      const int lane = lowest_lane(z);
-      if (!block_lane_is_degenerate(*blocks[lane >> 2], lane & 3)) return true;
-    }
-  }
   auto geom = [&](int lane) { return blocks[lane >> 2]->geom_id[lane & 3]; };
   auto prim = [&](int lane) { return blocks[lane >> 2]->prim_id[lane & 3]; };
   // The lanes the ray passes through take t, u, v from the scalar code in double precision
