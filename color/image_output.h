@@ -73,13 +73,15 @@ inline constexpr uint64_t kMaxImageFileValues = uint64_t(1) << 28;
 
 /// Reads an image file (environment maps, `prism convert`, tests). Throws
 /// Error(kInput) naming the path when the file cannot be read or its header declares no pixels
-/// or more than kMaxImageFileValues values; Error(kResource) when the pixels do not fit in
+/// or more than kMaxImageFileValues values, or rows so wide that OpenImageIO's read buffer (256
+/// scanlines or a row of tiles) would pass 1 GiB; Error(kResource) when the pixels do not fit in
 /// memory. An OpenEXR file first passes check_exr_header().
 ImageFileContents read_image_file(const std::filesystem::path& path);
 
 /// When `path` starts with the OpenEXR magic number: checks that its headers (every part's) are
 /// whole, each attribute's name and type ending within 256 bytes and its value within the file
-/// and of its type's size (channel lists and previews parsed), that each part has the attributes
+/// and of its type's size (channel lists and previews parsed; each channel of pixel type 0, 1
+/// or 2 and sampling at least 1), that each part has the attributes
 /// every EXR has (channels, compression, dataWindow, displayWindow, lineOrder) and windows of at
 /// most 2^20 pixels a side, before OpenEXR allocates what the header claims (OpenEXR 3.1 sizes a
 /// string attribute by its stated length, up to 2 GB, whatever the file holds). Throws

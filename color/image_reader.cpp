@@ -34,6 +34,10 @@ namespace {
 /// The largest side of an EXR prism reads: far above any film (kMaxFilmSide) or environment map.
 constexpr int64_t kMaxExrSide = int64_t(1) << 20;
 
+/// The most OpenImageIO may allocate for one read of rows: 256 rows of a 16384-wide image of 64
+/// float channels.
+constexpr uint64_t kMaxImageReadBytes = uint64_t(1) << 30;
+
 /// The sizes of OpenEXR's fixed-size attribute types.
 const std::map<std::string, int32_t> kFixedSizes = {
     {"box2i", 16},
@@ -128,11 +132,27 @@ void check_exr_header(const std::filesystem::path& path) {
         }
       } else if (type == "chlist") {
         // Channels: a name, 16 bytes (type, linear, reserved, sampling), ...; an empty name last.
+        // OpenImageIO aborts on a pixel type it does not know (fuzzing found it), and a sampling
+        // rate below 1 divides by zero in OpenEXR.
         size_t at = 0;
         for (;;) {
           const size_t end = value.find('\0', at);
-          if (end == std::string::npos) throw bad("attribute '" + name + "' (chlist) is cut");
+          if (end == std::string::npos || (end > at && end + 17 > value.size())) {
+            throw bad("attribute '" + name + "' (chlist) is cut");
+          }
           if (end == at) break;
+          const std::string channel = value.substr(at, end - at);
+          const uint32_t pixel_type = u32(end + 1);  // 0 uint, 1 half, 2 float
+          const auto x_sampling = int32_t(u32(end + 9));
+          const auto y_sampling = int32_t(u32(end + 13));
+          if (pixel_type > 2) {
+            throw bad("channel '" + channel + "' has pixel type " + std::to_string(pixel_type) +
+                      " (0 uint, 1 half and 2 float are the types OpenEXR defines)");
+          }
+          if (x_sampling < 1 || y_sampling < 1) {
+            throw bad("channel '" + channel + "' has sampling " + std::to_string(x_sampling) +
+                      " x " + std::to_string(y_sampling) + " (at least 1 x 1)");
+          }
           at = end + 1 + 16;
         }
         if (at + 1 != value.size()) {
@@ -179,6 +199,29 @@ ImageFileContents read_image_file(const std::filesystem::path& path) {
                     std::to_string(spec.height) + " pixels of " + std::to_string(spec.nchannels) +
                     " channels, more than the " + std::to_string(kMaxImageFileValues) +
                     " values prism reads from one image",
+                where);
+  }
+  // OpenImageIO reads a scanline file through a buffer of at least 256 of its rows and a tiled
+  // one a row of tiles at a time, whatever the image's height: a 55555555 x 1 image asks it for
+  // 170 GB (fuzzing found it). The buffer is bounded before it is asked for.
+  const uint64_t rows_per_read = spec.tile_width > 0 ? uint64_t(spec.tile_height) : 256;
+  const uint64_t row_pixels = spec.tile_width > 0
+                                  ? (uint64_t(spec.width) + uint64_t(spec.tile_width) - 1) /
+                                        uint64_t(spec.tile_width) * uint64_t(spec.tile_width)
+                                  : uint64_t(spec.width);
+  const uint64_t read_bytes = rows_per_read * row_pixels * uint64_t(spec.pixel_bytes(true));
+  if (spec.tile_height > kMaxExrSide || spec.tile_width > kMaxExrSide ||
+      read_bytes > kMaxImageReadBytes) {
+    throw Error(ErrorKind::kInput,
+                "the header declares " + std::to_string(spec.width) + " x " +
+                    std::to_string(spec.height) + " pixels of " + std::to_string(spec.nchannels) +
+                    " channels in " +
+                    (spec.tile_width > 0 ? std::to_string(spec.tile_width) + " x " +
+                                               std::to_string(spec.tile_height) + " tiles"
+                                         : std::string("scanlines")) +
+                    ": reading it would take buffers of " + std::to_string(read_bytes) +
+                    " bytes, more than the " + std::to_string(kMaxImageReadBytes) +
+                    " prism allows (rows too wide)",
                 where);
   }
   ImageFileContents contents;

@@ -362,11 +362,49 @@ TEST_F(ColorImageOutput, ExrHeaderClaimingMoreThanTheFileIsAnInputError) {
   });
   EXPECT_NE(std::string(tall.what()).find("dataWindow of 1 x 4294967296 pixels"), std::string::npos)
       << tall.what();
+  // A channel of a pixel type OpenEXR does not define (OpenImageIO aborts on it) or sampled 0.
+  const auto one_channel = [](const std::string& type, const std::string& sampling) {
+    return "channels\0chlist\0\x13\0\0\0R\0"s + type + "\0\0\0\0"s + sampling + "\0"s;
+  };
+  const Error type = expect_error([&] {
+    check_exr_header(
+        write_bytes("type.exr", magic + one_channel("\xfc\xff\xff\xff"s, "\1\0\0\0\1\0\0\0"s)));
+  });
+  EXPECT_NE(std::string(type.what()).find("channel 'R' has pixel type 4294967292"),
+            std::string::npos)
+      << type.what();
+  const Error sampling = expect_error([&] {
+    check_exr_header(
+        write_bytes("sampling.exr", magic + one_channel("\2\0\0\0"s, "\1\0\0\0\0\0\0\0"s)));
+  });
+  EXPECT_NE(std::string(sampling.what()).find("channel 'R' has sampling 1 x 0"), std::string::npos)
+      << sampling.what();
   // What prism writes passes, and so does a file that is not an EXR.
   ColorPipeline pipeline({});
   write_exr(dir_ / "beauty.exr", make_image(3, 2), metadata_pairs, pipeline);
   EXPECT_NO_THROW(check_exr_header(dir_ / "beauty.exr"));
   EXPECT_NO_THROW(check_exr_header(write_bytes("not.exr", "PF\n1 1\n-1\n")));
+}
+
+/// read_image_file: rows so wide that OpenImageIO's buffer of 256 scanlines would pass 1 GiB are
+/// Error(kInput) before it is allocated (found by fuzzing environment_map: a 55555555 x 1 PFM
+/// asked for 170 GB). A 16384-wide image, wider than any film, reads.
+TEST_F(ColorImageOutput, ImageWithRowsTooWideToReadIsAnInputError) {
+  const auto pfm = [&](const std::string& name, int width) {
+    std::string bytes = "PF\n" + std::to_string(width) + " 1\n-1\n";
+    bytes.append(size_t(width) * 12, '\0');
+    std::ofstream(dir_ / name, std::ios::binary) << bytes;
+    return dir_ / name;
+  };
+  const Error e = expect_error([&] { read_image_file(pfm("wide.pfm", 1 << 20)); });
+  EXPECT_EQ(e.kind(), ErrorKind::kInput);
+  EXPECT_NE(std::string(e.what()).find("1048576 x 1 pixels of 3 channels in scanlines"),
+            std::string::npos)
+      << e.what();
+  EXPECT_NE(std::string(e.what()).find("wide.pfm"), std::string::npos) << e.what();
+  const ImageFileContents ok = read_image_file(pfm("ok.pfm", 16384));
+  EXPECT_EQ(ok.image.width, 16384);
+  EXPECT_EQ(ok.image.height, 1);
 }
 
 }  // namespace
