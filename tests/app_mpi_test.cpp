@@ -285,20 +285,8 @@ void expect_rank1_failure(const std::string& rank1_scene, const std::string& exp
   const fs::path dir = test::make_temp_dir("mpi_rank1");
   const fs::path out = dir / "out.exr";
   const fs::path wrapper = rank1_wrapper(dir, kScene, rank1_scene);
-  std::vector<std::string> args = {"--allow-run-as-root",
-                                   "--oversubscribe",
-                                   "-np",
-                                   "3",
-                                   wrapper.string(),
-                                   PRISM_BINARY,
-                                   "-q",
-                                   "-r",
-                                   "32",
-                                   "24",
-                                   "-s",
-                                   "4",
-                                   "-f",
-                                   out.string()};
+  const std::vector<std::string> args = mpirun_args(
+      {PRISM_BINARY, "-q", "-r", "32", "24", "-s", "4", "-f", out.string()}, wrapper.string());
   const ProgramResult result = Launch(mpirun, args, dir).wait();
   EXPECT_EQ(result.exit_code, 2) << result.err;
   EXPECT_EQ(count_of(result.err, "prism: error:"), 1u) << result.err;
