@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -27,11 +28,15 @@ template <typename T>
 struct is_pair : std::false_type {};
 template <typename A, typename B>
 struct is_pair<std::pair<A, B>> : std::true_type {};
+template <typename T>
+struct is_std_array : std::false_type {};
+template <typename E, size_t N>
+struct is_std_array<std::array<E, N>> : std::true_type {};
 
 /// `j` as a T, or nothing when it is not one: integers must be JSON integers within T's range,
-/// floats finite JSON numbers within T's range, pairs two-element arrays of such. (nlohmann's own
-/// conversion casts a float to an int, or a huge double to a float, unchecked: undefined
-/// behaviour on a damaged or hostile state file.)
+/// floats finite JSON numbers within T's range, pairs and std::arrays arrays of that many such.
+/// (nlohmann's own conversion casts a float to an int, or a huge double to a float, unchecked:
+/// undefined behaviour on a damaged or hostile state file.)
 template <typename T>
 std::optional<T> checked_value(const json& j) {
   if constexpr (std::is_same_v<T, bool>) {
@@ -63,6 +68,15 @@ std::optional<T> checked_value(const json& j) {
     auto second = checked_value<typename T::second_type>(j[1]);
     if (!first || !second) return std::nullopt;
     return T(*first, *second);
+  } else if constexpr (is_std_array<T>::value) {
+    T values{};
+    if (!j.is_array() || j.size() != values.size()) return std::nullopt;
+    for (size_t i = 0; i < values.size(); ++i) {
+      auto value = checked_value<typename T::value_type>(j[i]);
+      if (!value) return std::nullopt;
+      values[i] = *value;
+    }
+    return values;
   } else {
     try {
       return j.get<T>();
