@@ -1,6 +1,7 @@
 // The image writers of color/image_output.h, EXR and display images (PNG, JPEG, TIFF): round
 // trips through OpenImageIO, header contents, encodings, atomicity and the writability check.
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/resource.h>
@@ -405,6 +406,42 @@ TEST_F(ColorImageOutput, ImageWithRowsTooWideToReadIsAnInputError) {
   const ImageFileContents ok = read_image_file(pfm("ok.pfm", 16384));
   EXPECT_EQ(ok.image.width, 16384);
   EXPECT_EQ(ok.image.height, 1);
+}
+
+/// read_image_file opens a file with the reader its first bytes name, whatever its extension (a
+/// JPEG named .png reads), and tries no other when that one fails; bytes of no format it knows
+/// are Error(kInput) naming the file (OpenImageIO would try each of its readers: its DICOM
+/// reader took seconds, found by fuzzing environment_map).
+TEST_F(ColorImageOutput, ImagesAreReadAsWhatTheirFirstBytesSay) {
+  const fs::path jpeg_named_png = dir_ / "photo.png";
+  {
+    auto out = OIIO::ImageOutput::create("jpeg");
+    ASSERT_TRUE(out);
+    const OIIO::ImageSpec spec(4, 2, 3, OIIO::TypeDesc::UINT8);
+    ASSERT_TRUE(out->open(jpeg_named_png.string(), spec));
+    const std::vector<unsigned char> pixels(4 * 2 * 3, 128);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+    ASSERT_TRUE(out->close());
+  }
+  const ImageFileContents jpeg = read_image_file(jpeg_named_png);
+  EXPECT_EQ(jpeg.format, "jpeg");
+  EXPECT_EQ(jpeg.image.width, 4);
+
+  for (const std::string& bytes : {std::string(), std::string("plain text, no image")}) {
+    const fs::path path = dir_ / "unknown.exr";
+    std::ofstream(path, std::ios::binary) << bytes;
+    const Error e = expect_error([&] { read_image_file(path); });
+    EXPECT_EQ(e.kind(), ErrorKind::kInput);
+    EXPECT_NE(std::string(e.what()).find("not a format prism reads"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("unknown.exr"), std::string::npos) << e.what();
+  }
+  // A broken PNG is a PNG error, from the PNG reader alone.
+  const fs::path broken = dir_ / "broken.png";
+  std::ofstream(broken, std::ios::binary) << "\x89PNG\r\n\x1a\n broken";
+  const Error e = expect_error([&] { read_image_file(broken); });
+  EXPECT_NE(std::string(e.what()).find("cannot read the image (png)"), std::string::npos)
+      << e.what();
 }
 
 }  // namespace
