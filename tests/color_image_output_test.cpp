@@ -363,7 +363,8 @@ TEST_F(ColorImageOutput, ExrHeaderClaimingMoreThanTheFileIsAnInputError) {
   });
   EXPECT_NE(std::string(tall.what()).find("dataWindow of 1 x 4294967296 pixels"), std::string::npos)
       << tall.what();
-  // A channel of a pixel type OpenEXR does not define (OpenImageIO aborts on it) or sampled 0.
+  // A channel of a pixel type OpenEXR does not define (OpenImageIO aborts on it) or sampled
+  // other than 1 x 1.
   const auto one_channel = [](const std::string& type, const std::string& sampling) {
     return "channels\0chlist\0\x13\0\0\0R\0"s + type + "\0\0\0\0"s + sampling + "\0"s;
   };
@@ -378,8 +379,14 @@ TEST_F(ColorImageOutput, ExrHeaderClaimingMoreThanTheFileIsAnInputError) {
     check_exr_header(
         write_bytes("sampling.exr", magic + one_channel("\2\0\0\0"s, "\1\0\0\0\0\0\0\0"s)));
   });
-  EXPECT_NE(std::string(sampling.what()).find("channel 'R' has sampling 1 x 0"), std::string::npos)
+  EXPECT_NE(std::string(sampling.what()).find("channel 'R' is sampled 1 x 0"), std::string::npos)
       << sampling.what();
+  const Error wide = expect_error([&] {
+    check_exr_header(
+        write_bytes("subsampled.exr", magic + one_channel("\2\0\0\0"s, "\1\0\x08\0\1\0\0\0"s)));
+  });
+  EXPECT_NE(std::string(wide.what()).find("channel 'R' is sampled 524289 x 1"), std::string::npos)
+      << wide.what();
   // What prism writes passes, and so does a file that is not an EXR.
   ColorPipeline pipeline({});
   write_exr(dir_ / "beauty.exr", make_image(3, 2), metadata_pairs, pipeline);
