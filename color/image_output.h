@@ -73,7 +73,8 @@ inline constexpr uint64_t kMaxImageFileValues = uint64_t(1) << 28;
 
 /// Reads an image file (environment maps, `prism convert`, tests) with the one OpenImageIO reader
 /// its first bytes name (OpenEXR, Radiance HDR, PFM/PNM, PNG, JPEG, TIFF, BMP, GIF, WebP, PSD;
-/// no other reader is tried when that one fails). Throws
+/// no other reader is tried when that one fails; a PNG's chunks are checked to fit in the file
+/// first). Throws
 /// Error(kInput) naming the path when the file cannot be read or its header declares no pixels
 /// or more than kMaxImageFileValues values, or rows so wide that OpenImageIO's read buffer (256
 /// scanlines or a row of tiles) would pass 1 GiB; Error(kResource) when the pixels do not fit in

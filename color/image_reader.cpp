@@ -201,6 +201,37 @@ std::string format_by_magic(const std::string& start) {
   return "";
 }
 
+/// Walks a PNG's chunks: each must fit in what is left of the file. libpng allocates a chunk's
+/// stated length before reading it (a 330-byte file whose tEXt chunk claims 1.8 GB: fuzzing
+/// environment_map). Throws Error(kInput) naming the chunk.
+void check_png_chunks(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const std::streamoff file_size = in.tellg();
+  for (std::streamoff at = 8; at < file_size;) {
+    in.seekg(at);
+    unsigned char header[8];
+    if (!in.read(reinterpret_cast<char*>(header), 8)) return;  // libpng says it is cut
+    const uint64_t length = uint64_t(header[0]) << 24 | uint64_t(header[1]) << 16 |
+                            uint64_t(header[2]) << 8 | uint64_t(header[3]);
+    const std::string type(reinterpret_cast<const char*>(header + 4), 4);
+    const uint64_t left = uint64_t(file_size - at - 8);
+    if (length + 4 > left) {
+      std::string printable = type;
+      for (char& c : printable) {
+        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+      }
+      throw Error(ErrorKind::kInput,
+                  "not a valid PNG file: chunk '" + printable + "' at byte " + std::to_string(at) +
+                      " claims " + std::to_string(length) + " bytes, the file has " +
+                      std::to_string(left) + " left",
+                  ErrorLocation{path.string(), 0, {}});
+    }
+    if (type == "IEND") return;
+    at += std::streamoff(8 + length + 4);
+  }
+}
+
 /// Opens `path` with the one reader its first bytes name. OpenImageIO's own open() would, when
 /// that reader fails, try every reader it has (its DICOM reader loads a dictionary of several
 /// MB: seconds, found by fuzzing environment_map); a file is read as what it says it is.
@@ -214,6 +245,7 @@ std::unique_ptr<OIIO::ImageInput> open_image(const std::filesystem::path& path) 
     start.resize(size_t(file.gcount()));
   }
   const std::string format = format_by_magic(start);
+  if (format == "png") check_png_chunks(path);
   if (format.empty()) {
     throw Error(ErrorKind::kInput,
                 "cannot read the image: not a format prism reads (by its first bytes: OpenEXR, "

@@ -420,6 +420,7 @@ TEST_F(ColorImageOutput, ImageWithRowsTooWideToReadIsAnInputError) {
 /// are Error(kInput) naming the file (OpenImageIO would try each of its readers: its DICOM
 /// reader took seconds, found by fuzzing environment_map).
 TEST_F(ColorImageOutput, ImagesAreReadAsWhatTheirFirstBytesSay) {
+  using namespace std::string_literals;
   const fs::path jpeg_named_png = dir_ / "photo.png";
   {
     auto out = OIIO::ImageOutput::create("jpeg");
@@ -449,6 +450,14 @@ TEST_F(ColorImageOutput, ImagesAreReadAsWhatTheirFirstBytesSay) {
   const Error e = expect_error([&] { read_image_file(broken); });
   EXPECT_NE(std::string(e.what()).find("cannot read the image (png)"), std::string::npos)
       << e.what();
+  // A PNG chunk claiming more bytes than the file has (libpng would allocate them first).
+  const fs::path claims = dir_ / "claims.png";
+  std::ofstream(claims, std::ios::binary) << "\x89PNG\r\n\x1a\n"s
+                                          << "\x6c\x65\x78\x35tEXtabc"s;
+  const Error chunk = expect_error([&] { read_image_file(claims); });
+  EXPECT_NE(std::string(chunk.what()).find("chunk 'tEXt' at byte 8 claims 1818589237 bytes"),
+            std::string::npos)
+      << chunk.what();
 }
 
 }  // namespace
