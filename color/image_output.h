@@ -84,7 +84,7 @@ ImageFileContents read_image_file(const std::filesystem::path& path);
 /// When `path` starts with the OpenEXR magic number: checks that its headers (every part's) are
 /// whole, each attribute's name and type ending within 256 bytes and its value within the file
 /// and of its type's size (channel lists and previews parsed; each channel of pixel type 0, 1
-/// or 2 and sampled 1 x 1), that each part has the attributes
+/// or 2 and sampled 1 x 1; at most 4 MiB a scanline), that each part has the attributes
 /// every EXR has (channels, compression, dataWindow, displayWindow, lineOrder) and windows of at
 /// most 2^20 pixels a side, before OpenEXR allocates what the header claims (OpenEXR 3.1 sizes a
 /// string attribute by its stated length, up to 2 GB, whatever the file holds). Throws

@@ -387,6 +387,17 @@ TEST_F(ColorImageOutput, ExrHeaderClaimingMoreThanTheFileIsAnInputError) {
   });
   EXPECT_NE(std::string(wide.what()).find("channel 'R' is sampled 524289 x 1"), std::string::npos)
       << wide.what();
+  // Scanlines of 2^20 pixels x two float channels: 8 MiB a line, OpenEXR's buffers sized by it.
+  const Error wide_lines = expect_error([&] {
+    check_exr_header(write_bytes(
+        "wide_lines.exr",
+        magic + "channels\0chlist\0\x25\0\0\0"s + "A\0\2\0\0\0\0\0\0\0\1\0\0\0\1\0\0\0"s +
+            "B\0\2\0\0\0\0\0\0\0\1\0\0\0\1\0\0\0\0"s + "dataWindow\0box2i\0\x10\0\0\0"s +
+            "\0\0\0\0\0\0\0\0\xff\xff\x0f\0\0\0\0\0"s + "\0"s));
+  });
+  EXPECT_NE(std::string(wide_lines.what()).find("scanlines of 1048576 pixels x 8 bytes"),
+            std::string::npos)
+      << wide_lines.what();
   // What prism writes passes, and so does a file that is not an EXR.
   ColorPipeline pipeline({});
   write_exr(dir_ / "beauty.exr", make_image(3, 2), metadata_pairs, pipeline);
