@@ -72,7 +72,7 @@ struct ImageFileContents {
 inline constexpr uint64_t kMaxImageFileValues = uint64_t(1) << 28;
 
 /// Reads an image file (environment maps, `prism convert`, tests) with the one OpenImageIO reader
-/// its first bytes name (OpenEXR, Radiance HDR, PFM/PNM, PNG, JPEG, TIFF, BMP, GIF, WebP, PSD;
+/// its first bytes name (OpenEXR, Radiance HDR, PFM/PNM, PNG, JPEG, TIFF;
 /// no other reader is tried when that one fails; a PNG's chunks are checked to fit in the file
 /// first). Throws
 /// Error(kInput) naming the path when the file cannot be read or its header declares no pixels

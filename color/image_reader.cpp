@@ -192,7 +192,10 @@ void check_exr_header(const std::filesystem::path& path) {
 }
 
 namespace {
-/// OpenImageIO's reader for a file that starts with `start`, or "" for none prism knows.
+/// OpenImageIO's reader for a file that starts with `start`, or "" for none prism reads. Only
+/// formats that hold radiance or a texture are read: fewer readers, fewer third-party bugs
+/// within reach (an exception inside OpenImageIO 2.4's GIF reader, on a 24-byte file, ends the
+/// process in std::terminate, past any handler: fuzzing environment_map).
 std::string format_by_magic(const std::string& start) {
   const auto starts_with = [&](std::string_view magic, size_t at = 0) {
     return start.size() >= at + magic.size() && start.compare(at, magic.size(), magic) == 0;
@@ -207,10 +210,6 @@ std::string format_by_magic(const std::string& start) {
   }
   if (starts_with("\xff\xd8\xff"sv)) return "jpeg";
   if (starts_with("II*\0"sv) || starts_with("MM\0*"sv)) return "tiff";
-  if (starts_with("BM"sv)) return "bmp";
-  if (starts_with("GIF8"sv)) return "gif";
-  if (starts_with("RIFF"sv) && starts_with("WEBP"sv, 8)) return "webp";
-  if (starts_with("8BPS"sv)) return "psd";
   return "";
 }
 
@@ -262,7 +261,7 @@ std::unique_ptr<OIIO::ImageInput> open_image(const std::filesystem::path& path) 
   if (format.empty()) {
     throw Error(ErrorKind::kInput,
                 "cannot read the image: not a format prism reads (by its first bytes: OpenEXR, "
-                "Radiance HDR, PFM or PNM, PNG, JPEG, TIFF, BMP, GIF, WebP or PSD)",
+                "Radiance HDR, PFM or PNM, PNG, JPEG or TIFF)",
                 where);
   }
   auto in = OIIO::ImageInput::create(format);
