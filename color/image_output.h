@@ -71,14 +71,12 @@ struct ImageFileContents {
 /// 1 GiB, e.g. an 8192 x 8192 RGBA image.
 inline constexpr uint64_t kMaxImageFileValues = uint64_t(1) << 28;
 
-/// Reads an image file (environment maps, `prism convert`, tests) with the one OpenImageIO reader
-/// its first bytes name (OpenEXR, Radiance HDR, PFM/PNM, PNG, JPEG, TIFF;
-/// no other reader is tried when that one fails; a PNG's chunks are checked to fit in the file
-/// first). Throws
-/// Error(kInput) naming the path when the file cannot be read or its header declares no pixels
-/// or more than kMaxImageFileValues values, or rows so wide that OpenImageIO's read buffer (256
-/// scanlines or a row of tiles) would pass 1 GiB; Error(kResource) when the pixels do not fit in
-/// memory. An OpenEXR file first passes check_exr_header().
+/// Reads an image file (environment maps, `prism convert`, tests) opened by open_image_file()
+/// (color/image_reader.h: only OpenEXR, Radiance HDR, PFM/PNM, PNG, JPEG and TIFF, by their
+/// first bytes). Throws Error(kInput) naming the path when the file cannot be read or its header
+/// declares no pixels or more than kMaxImageFileValues values, or rows so wide that
+/// OpenImageIO's read buffer (256 scanlines or a row of tiles) would pass 1 GiB; Error(kResource)
+/// when the pixels do not fit in memory.
 ImageFileContents read_image_file(const std::filesystem::path& path);
 
 /// When `path` starts with the OpenEXR magic number: checks that its headers (every part's) are

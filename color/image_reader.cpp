@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "color/image_output.h"
+#include "color/image_reader.h"
 #include "core/error.h"
 
 namespace prism {
@@ -244,10 +245,12 @@ void check_png_chunks(const std::filesystem::path& path) {
   }
 }
 
-/// Opens `path` with the one reader its first bytes name. OpenImageIO's own open() would, when
-/// that reader fails, try every reader it has (its DICOM reader loads a dictionary of several
-/// MB: seconds, found by fuzzing environment_map); a file is read as what it says it is.
-std::unique_ptr<OIIO::ImageInput> open_image(const std::filesystem::path& path) {
+}  // namespace
+
+// OpenImageIO's own open() would, when the reader for the extension fails, try every reader it
+// has (its DICOM reader loads a dictionary of several MB: seconds, found by fuzzing
+// environment_map); a file is read as what its first bytes say it is.
+std::unique_ptr<OIIO::ImageInput> open_image_file(const std::filesystem::path& path) {
   const ErrorLocation where{path.string(), 0, {}};
   std::string start(12, '\0');
   {
@@ -257,13 +260,15 @@ std::unique_ptr<OIIO::ImageInput> open_image(const std::filesystem::path& path) 
     start.resize(size_t(file.gcount()));
   }
   const std::string format = format_by_magic(start);
-  if (format == "png") check_png_chunks(path);
   if (format.empty()) {
     throw Error(ErrorKind::kInput,
                 "cannot read the image: not a format prism reads (by its first bytes: OpenEXR, "
                 "Radiance HDR, PFM or PNM, PNG, JPEG or TIFF)",
                 where);
   }
+  // Headers that make the readers allocate what they claim are checked first.
+  if (format == "openexr") check_exr_header(path);
+  if (format == "png") check_png_chunks(path);
   auto in = OIIO::ImageInput::create(format);
   if (!in) {
     throw Error(ErrorKind::kInput,
@@ -278,11 +283,9 @@ std::unique_ptr<OIIO::ImageInput> open_image(const std::filesystem::path& path) 
   }
   return in;
 }
-}  // namespace
 
 ImageFileContents read_image_file(const std::filesystem::path& path) {
-  check_exr_header(path);
-  const std::unique_ptr<OIIO::ImageInput> in = open_image(path);
+  const std::unique_ptr<OIIO::ImageInput> in = open_image_file(path);
   const OIIO::ImageSpec& spec = in->spec();
   const ErrorLocation where{path.string(), 0, {}};
   // The header's sizes are checked before anything is allocated: a file may declare any size

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "color/image_output.h"
+#include "color/image_reader.h"
 #include "color/image_writers.h"
 #include "core/hash.h"
 
@@ -81,18 +82,16 @@ namespace {
 std::unique_ptr<OIIO::ImageInput> open_state_file(const fs::path& path, ImageMetadata& attributes) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw bad_file(path, "not a file");
-  // Not an EXR: said here, before OpenImageIO tries every format it knows on it.
+  // Not an EXR (an image of another format, an empty file): said plainly.
   char magic[4] = {};
   std::ifstream(path, std::ios::binary).read(magic, 4);
   if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0) throw bad_file(path, "not an OpenEXR file");
+  std::unique_ptr<OIIO::ImageInput> in;
   try {
-    check_exr_header(path);
+    in = open_image_file(path);
   } catch (const Error& e) {
     throw bad_file(path, e.message());
   }
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) throw bad_file(path, "not a readable image: " + OIIO::geterror());
-  if (std::string(in->format_name()) != "openexr") throw bad_file(path, "not an OpenEXR file");
   for (const auto& p : in->spec().extra_attribs) {
     attributes.emplace_back(p.name().string(), p.get_string());
   }
