@@ -81,7 +81,9 @@ struct BinaryBvh {
   std::vector<PrimRef> refs;  ///< leaf order
 };
 
-/// One reference per triangle and per sphere of `geometry` (spheres use sphere_geom_id()).
+/// One reference per triangle and per sphere of `geometry` (spheres use sphere_geom_id()),
+/// leaving out degenerate triangles (is_degenerate_triangle(): never hit), so a tree built from
+/// them has no lane a kernel must check for degeneracy.
 std::vector<PrimRef> make_prim_refs(const SceneGeometry& geometry);
 
 /// Number of blocks of kLeafBlockSize needed for n primitives.

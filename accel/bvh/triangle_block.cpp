@@ -42,9 +42,4 @@ bool intersect_block_lane(const WatertightRay& ray, const TriangleBlock& block, 
   return true;
 }
 
-bool block_lane_is_degenerate(const TriangleBlock& block, int lane) {
-  const LaneVertices l = lane_vertices(block, lane);
-  return is_degenerate_triangle(l.v[0], l.v[1], l.v[2]);
-}
-
 }  // namespace prism

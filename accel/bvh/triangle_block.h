@@ -30,7 +30,4 @@ void fill_triangle_block(const SceneGeometry& geometry, const PrimRef* refs, int
 bool intersect_block_lane(const WatertightRay& ray, const TriangleBlock& block, int lane,
                           PrimitiveHit& hit);
 
-/// is_degenerate_triangle() on one lane of a block.
-bool block_lane_is_degenerate(const TriangleBlock& block, int lane);
-
 }  // namespace prism

@@ -197,8 +197,7 @@ struct TriangleRay {
   }
   __m256 ox, oy, oz, sx, sy, sz, tmin;
   int kx, ky, kz;
-  /// For the scalar code: t, u, v of the lanes hit, and the whole test of lanes with a zero
-  /// edge function.
+  /// For the scalar code: the whole test of lanes with a zero edge function.
   WatertightRay watertight;
 };
 
@@ -279,10 +278,56 @@ struct Lanes<__m256> {
   }
 };
 
+/// sheared_triangle_hit() (core/primitive_intersection.cpp) on four lanes at once, in double:
+/// the same operations in the same order, so t, u, v are its bits. `s` holds the nine sheared
+/// coordinates (ax, ay, az, bx, ... cz), `stride` floats apart; writes t, u, v of these four lanes
+/// and returns the mask (bits 0-3) of those with a non-zero determinant and t in [tmin, tmax].
+PRISM_KERNEL_INLINE int double_hit_parameters4(const float* s, int stride, float shear_z,
+                                               float tmin, float tmax, float* t, float* u,
+                                               float* v) {
+  auto load = [&](int k) { return _mm256_cvtps_pd(_mm_load_ps(s + stride * k)); };
+  const __m256d ax = load(0), ay = load(1), az = load(2), bx = load(3), by = load(4), bz = load(5),
+                cx = load(6), cy = load(7), cz = load(8);
+  const __m256d e0 = _mm256_sub_pd(_mm256_mul_pd(bx, cy), _mm256_mul_pd(by, cx));
+  const __m256d e1 = _mm256_sub_pd(_mm256_mul_pd(cx, ay), _mm256_mul_pd(cy, ax));
+  const __m256d e2 = _mm256_sub_pd(_mm256_mul_pd(ax, by), _mm256_mul_pd(ay, bx));
+  const __m256d det = _mm256_add_pd(_mm256_add_pd(e0, e1), e2);
+  const __m256d t_scaled =
+      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(e0, az), _mm256_mul_pd(e1, bz)),
+                                  _mm256_mul_pd(e2, cz)),
+                    _mm256_set1_pd(static_cast<double>(shear_z)));
+  const __m128 tf = _mm256_cvtpd_ps(_mm256_div_pd(t_scaled, det));
+  _mm_store_ps(t, tf);
+  _mm_store_ps(u, _mm256_cvtpd_ps(_mm256_div_pd(e1, det)));
+  _mm_store_ps(v, _mm256_cvtpd_ps(_mm256_div_pd(e2, det)));
+  const int nonzero = _mm256_movemask_pd(_mm256_cmp_pd(det, _mm256_setzero_pd(), _CMP_NEQ_OQ));
+  const __m128 in_range = _mm_and_ps(_mm_cmp_ps(tf, _mm_set1_ps(tmin), _CMP_GE_OQ),
+                                     _mm_cmp_ps(tf, _mm_set1_ps(tmax), _CMP_LE_OQ));
+  return nonzero & _mm_movemask_ps(in_range);
+}
+
+/// double_hit_parameters4() on every lane of one or two blocks: the mask of lanes hit in
+/// [tmin, tmax], with their t, u, v.
+template <typename V>
+PRISM_KERNEL_INLINE int double_hit_parameters(const V* const sheared[9], const TriangleRay& ray,
+                                              float tmax, float* t, float* u, float* v) {
+  constexpr int kCount = Lanes<V>::kCount;
+  alignas(32) float s[9][kCount];
+  for (int k = 0; k < 9; ++k) vstore(s[k], *sheared[k]);
+  int mask = 0;
+  for (int first = 0; first < kCount; first += 4) {
+    mask |= double_hit_parameters4(&s[0][first], kCount, ray.watertight.shear_z,
+                                   ray.watertight.tmin, tmax, t + first, u + first, v + first)
+            << first;
+  }
+  return mask;
+}
+
 /// Watertight triangle tests on the lanes of one or two blocks at once: the hit decision in
-/// intersect_triangle()'s order of operations, then t, u, v of the lanes hit from the scalar
-/// triangle_hit_parameters(). Lanes with an exactly zero edge function go through the scalar
-/// test (its double-precision path). Replaces `hit` by a hit in
+/// intersect_triangle()'s order of operations, then t, u, v of the lanes hit in double precision
+/// (double_hit_parameters(), sheared_triangle_hit()'s bits). Lanes with an exactly zero edge
+/// function go through the scalar test (its double-precision path). The tree holds no degenerate
+/// triangle (make_prim_refs()), so no lane is checked for one. Replaces `hit` by a hit in
 /// [tmin, tmax] that comes before it and returns whether it did (any_hit: whether any lane hits).
 template <typename V>
 PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
@@ -345,26 +390,24 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   if (mask == 0 && special_mask == 0) return false;
   auto geom = [&](int lane) { return blocks[lane >> 2]->geom_id[lane & 3]; };
   auto prim = [&](int lane) { return blocks[lane >> 2]->prim_id[lane & 3]; };
-  // The lanes the ray passes through take t, u, v from the scalar code in double precision
-  // (triangle_hit_parameters()), as intersect_triangle() does; lanes with a zero edge function
-  // take the whole scalar test. Either way the bits are brute force's.
+  // The lanes the ray passes through take t, u, v in double precision, four lanes at a time, as
+  // intersect_triangle() does one; lanes with a zero edge function take the whole scalar test.
+  // Either way the bits are brute force's.
   WatertightRay w = ray.watertight;
   bool found = false;
   if (mask != 0) {
-    alignas(32) float s[9][L::kCount];
+    alignas(32) float lane_t[L::kCount], lane_u[L::kCount], lane_v[L::kCount];
     const V* sheared[9] = {&ax, &ay, &az, &bx, &by, &bz, &cx, &cy, &cz};
-    for (int k = 0; k < 9; ++k) vstore(s[k], *sheared[k]);
-    for (unsigned z = static_cast<unsigned>(mask); z != 0; z &= z - 1) {
+    const int hit_mask =
+        mask & double_hit_parameters<V>(sheared, ray, tmax, lane_t, lane_u, lane_v);
+    for (unsigned z = static_cast<unsigned>(hit_mask); z != 0; z &= z - 1) {
       const int lane = lowest_lane(z);
-      w.tmax = tmax;
-      const ShearedTriangle st{s[0][lane], s[1][lane], s[2][lane], s[3][lane], s[4][lane],
-                               s[5][lane], s[6][lane], s[7][lane], s[8][lane]};
-      const std::optional<PrimitiveHit> h = sheared_triangle_hit(w, st);
-      if (!h || (!any_hit && !comes_before_hit(h->t, geom(lane), prim(lane), hit))) continue;
-      if (block_lane_is_degenerate(*blocks[lane >> 2], lane & 3)) continue;
+      // Lanes are taken in order and tmax shrinks with each, as the scalar test's interval does.
+      if (lane_t[lane] > tmax) continue;
+      if (!any_hit && !comes_before_hit(lane_t[lane], geom(lane), prim(lane), hit)) continue;
       if (any_hit) return true;
-      tmax = h->t;
-      hit = {h->t, h->u, h->v, geom(lane), prim(lane)};
+      tmax = lane_t[lane];
+      hit = {lane_t[lane], lane_u[lane], lane_v[lane], geom(lane), prim(lane)};
       found = true;
     }
   }
