@@ -2,6 +2,7 @@
 // includes on purpose: each wide_traversal_<isa>.cpp includes this file once, inside its own
 // namespace, after wide_kernel_common.h and after defining for that instruction set:
 //   template <int W, unsigned kOctant> struct NodeRay;   // box test constants, from RaySetup
+//   kRuntimeOctant, kKernelUsesRuntimeOctant  // whether one kOctant (kRuntimeOctant) serves all
 //   uint32_t intersect_node(const WideNode<W>&, const NodeRay<W, kOctant>&, float tmax,
 //                           float* tnear);  // mask of the children entered, entry distances
 //   struct TriangleRay;                     // triangle test constants, from (RaySetup, Ray)
@@ -158,29 +159,33 @@ bool intersect_any_octant(const WideBvhView& bvh, const RaySetup& setup, const R
   }
 }
 
-// The entry points: one instantiation per ray octant, so that every plane offset of the box
-// test is a constant.
+// The entry points: one instantiation for every octant (kKernelUsesRuntimeOctant), or one per
+// ray octant, so that every plane offset of the box test is a constant.
 template <int W>
 bool intersect_closest(const WideBvhView& bvh, const Ray& ray, WideHit& hit) {
   RaySetup s;
   setup_ray(ray, bvh.scene_scale, s);
-  switch (s.octant) {
-    case 0:
-      return intersect_closest_octant<W, 0>(bvh, s, ray, hit);
-    case 1:
-      return intersect_closest_octant<W, 1>(bvh, s, ray, hit);
-    case 2:
-      return intersect_closest_octant<W, 2>(bvh, s, ray, hit);
-    case 3:
-      return intersect_closest_octant<W, 3>(bvh, s, ray, hit);
-    case 4:
-      return intersect_closest_octant<W, 4>(bvh, s, ray, hit);
-    case 5:
-      return intersect_closest_octant<W, 5>(bvh, s, ray, hit);
-    case 6:
-      return intersect_closest_octant<W, 6>(bvh, s, ray, hit);
-    default:
-      return intersect_closest_octant<W, 7>(bvh, s, ray, hit);
+  if constexpr (kKernelUsesRuntimeOctant) {
+    return intersect_closest_octant<W, kRuntimeOctant>(bvh, s, ray, hit);
+  } else {
+    switch (s.octant) {
+      case 0:
+        return intersect_closest_octant<W, 0>(bvh, s, ray, hit);
+      case 1:
+        return intersect_closest_octant<W, 1>(bvh, s, ray, hit);
+      case 2:
+        return intersect_closest_octant<W, 2>(bvh, s, ray, hit);
+      case 3:
+        return intersect_closest_octant<W, 3>(bvh, s, ray, hit);
+      case 4:
+        return intersect_closest_octant<W, 4>(bvh, s, ray, hit);
+      case 5:
+        return intersect_closest_octant<W, 5>(bvh, s, ray, hit);
+      case 6:
+        return intersect_closest_octant<W, 6>(bvh, s, ray, hit);
+      default:
+        return intersect_closest_octant<W, 7>(bvh, s, ray, hit);
+    }
   }
 }
 
@@ -188,22 +193,26 @@ template <int W>
 bool intersect_any(const WideBvhView& bvh, const Ray& ray) {
   RaySetup s;
   setup_ray(ray, bvh.scene_scale, s);
-  switch (s.octant) {
-    case 0:
-      return intersect_any_octant<W, 0>(bvh, s, ray);
-    case 1:
-      return intersect_any_octant<W, 1>(bvh, s, ray);
-    case 2:
-      return intersect_any_octant<W, 2>(bvh, s, ray);
-    case 3:
-      return intersect_any_octant<W, 3>(bvh, s, ray);
-    case 4:
-      return intersect_any_octant<W, 4>(bvh, s, ray);
-    case 5:
-      return intersect_any_octant<W, 5>(bvh, s, ray);
-    case 6:
-      return intersect_any_octant<W, 6>(bvh, s, ray);
-    default:
-      return intersect_any_octant<W, 7>(bvh, s, ray);
+  if constexpr (kKernelUsesRuntimeOctant) {
+    return intersect_any_octant<W, kRuntimeOctant>(bvh, s, ray);
+  } else {
+    switch (s.octant) {
+      case 0:
+        return intersect_any_octant<W, 0>(bvh, s, ray);
+      case 1:
+        return intersect_any_octant<W, 1>(bvh, s, ray);
+      case 2:
+        return intersect_any_octant<W, 2>(bvh, s, ray);
+      case 3:
+        return intersect_any_octant<W, 3>(bvh, s, ray);
+      case 4:
+        return intersect_any_octant<W, 4>(bvh, s, ray);
+      case 5:
+        return intersect_any_octant<W, 5>(bvh, s, ray);
+      case 6:
+        return intersect_any_octant<W, 6>(bvh, s, ray);
+      default:
+        return intersect_any_octant<W, 7>(bvh, s, ray);
+    }
   }
 }

@@ -50,6 +50,9 @@ PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& 
   }
 }
 
+inline constexpr unsigned kRuntimeOctant = 8;
+inline constexpr bool kKernelUsesRuntimeOctant = false;
+
 template <int W, unsigned kOctant>
 struct NodeRay {
   explicit NodeRay(const RaySetup& s) : setup(s) {}
