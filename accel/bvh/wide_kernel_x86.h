@@ -19,14 +19,15 @@ PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& 
   _mm_store_ps(ad, abs_d);
   s.tmin = ray.tmin;
   s.tmax = ray.tmax;
-  s.kz = (ad[0] >= ad[1] && ad[0] >= ad[2]) ? 0 : (ad[1] >= ad[2] ? 1 : 2);
-  s.kx = s.kz == 2 ? 0 : s.kz + 1;
-  s.ky = s.kx == 2 ? 0 : s.kx + 1;
-  if (dv[s.kz] < 0.0f) {
-    const int k = s.kx;
-    s.kx = s.ky;
-    s.ky = k;
-  }
+  // WatertightRay's choice of axes, without branches: incoherent rays would mispredict them.
+  const int x_largest = static_cast<int>(ad[0] >= ad[1]) & static_cast<int>(ad[0] >= ad[2]);
+  s.kz = (1 - x_largest) * (2 - static_cast<int>(ad[1] >= ad[2]));
+  static constexpr int kNextAxis[3] = {1, 2, 0};
+  s.kx = kNextAxis[s.kz];
+  s.ky = kNextAxis[s.kx];
+  const int swap = (s.kx ^ s.ky) & -static_cast<int>(dv[s.kz] < 0.0f);
+  s.kx ^= swap;
+  s.ky ^= swap;
   // Lane 3 carries d[kz], so one division yields 1 / d per axis and the shear's 1 / d[kz].
   const __m128 tiny = _mm_cmplt_ps(abs_d, _mm_set1_ps(kMinDirection));
   __m128 dd = _mm_blendv_ps(d, _mm_or_ps(_mm_and_ps(d, sign), _mm_set1_ps(kMinDirection)), tiny);
