@@ -159,60 +159,55 @@ bool intersect_any_octant(const WideBvhView& bvh, const RaySetup& setup, const R
   }
 }
 
-// The entry points: one instantiation for every octant (kKernelUsesRuntimeOctant), or one per
-// ray octant, so that every plane offset of the box test is a constant.
+template <unsigned kOctant>
+struct OctantTag {
+  static constexpr unsigned value = kOctant;
+};
+
+/// Calls visit(OctantTag<kOctant>{}) with the kOctant this kernel traverses a ray of `octant`
+/// with: kRuntimeOctant for every ray (kKernelUsesRuntimeOctant), or the octant itself, so that
+/// every plane offset of the box test is a constant.
+template <typename Visit>
+PRISM_KERNEL_INLINE bool dispatch_octant(unsigned octant, Visit&& visit) {
+  if constexpr (kKernelUsesRuntimeOctant) {
+    return visit(OctantTag<kRuntimeOctant>{});
+  } else {
+    switch (octant) {
+      case 0:
+        return visit(OctantTag<0>{});
+      case 1:
+        return visit(OctantTag<1>{});
+      case 2:
+        return visit(OctantTag<2>{});
+      case 3:
+        return visit(OctantTag<3>{});
+      case 4:
+        return visit(OctantTag<4>{});
+      case 5:
+        return visit(OctantTag<5>{});
+      case 6:
+        return visit(OctantTag<6>{});
+      default:
+        return visit(OctantTag<7>{});
+    }
+  }
+}
+
+// The entry points.
 template <int W>
 bool intersect_closest(const WideBvhView& bvh, const Ray& ray, WideHit& hit) {
   RaySetup s;
   setup_ray(ray, bvh.scene_scale, s);
-  if constexpr (kKernelUsesRuntimeOctant) {
-    return intersect_closest_octant<W, kRuntimeOctant>(bvh, s, ray, hit);
-  } else {
-    switch (s.octant) {
-      case 0:
-        return intersect_closest_octant<W, 0>(bvh, s, ray, hit);
-      case 1:
-        return intersect_closest_octant<W, 1>(bvh, s, ray, hit);
-      case 2:
-        return intersect_closest_octant<W, 2>(bvh, s, ray, hit);
-      case 3:
-        return intersect_closest_octant<W, 3>(bvh, s, ray, hit);
-      case 4:
-        return intersect_closest_octant<W, 4>(bvh, s, ray, hit);
-      case 5:
-        return intersect_closest_octant<W, 5>(bvh, s, ray, hit);
-      case 6:
-        return intersect_closest_octant<W, 6>(bvh, s, ray, hit);
-      default:
-        return intersect_closest_octant<W, 7>(bvh, s, ray, hit);
-    }
-  }
+  return dispatch_octant(s.octant, [&](auto octant) {
+    return intersect_closest_octant<W, decltype(octant)::value>(bvh, s, ray, hit);
+  });
 }
 
 template <int W>
 bool intersect_any(const WideBvhView& bvh, const Ray& ray) {
   RaySetup s;
   setup_ray(ray, bvh.scene_scale, s);
-  if constexpr (kKernelUsesRuntimeOctant) {
-    return intersect_any_octant<W, kRuntimeOctant>(bvh, s, ray);
-  } else {
-    switch (s.octant) {
-      case 0:
-        return intersect_any_octant<W, 0>(bvh, s, ray);
-      case 1:
-        return intersect_any_octant<W, 1>(bvh, s, ray);
-      case 2:
-        return intersect_any_octant<W, 2>(bvh, s, ray);
-      case 3:
-        return intersect_any_octant<W, 3>(bvh, s, ray);
-      case 4:
-        return intersect_any_octant<W, 4>(bvh, s, ray);
-      case 5:
-        return intersect_any_octant<W, 5>(bvh, s, ray);
-      case 6:
-        return intersect_any_octant<W, 6>(bvh, s, ray);
-      default:
-        return intersect_any_octant<W, 7>(bvh, s, ray);
-    }
-  }
+  return dispatch_octant(s.octant, [&](auto octant) {
+    return intersect_any_octant<W, decltype(octant)::value>(bvh, s, ray);
+  });
 }

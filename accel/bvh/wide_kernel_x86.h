@@ -313,21 +313,23 @@ PRISM_KERNEL_INLINE int double_hit_parameters4(const float* s, int stride, float
   return nonzero & _mm_movemask_ps(in_range);
 }
 
-/// double_hit_parameters4() on every lane of one or two blocks: the mask of lanes hit in
-/// [tmin, tmax], with their t, u, v.
+/// double_hit_parameters4() on the lanes of `candidates` (one or two blocks): the mask of those
+/// hit in [tmin, tmax], with their t, u, v. A block without a candidate lane is skipped.
 template <typename V>
-PRISM_KERNEL_INLINE int double_hit_parameters(const V* const sheared[9], const TriangleRay& ray,
-                                              float tmax, float* t, float* u, float* v) {
+PRISM_KERNEL_INLINE int double_hit_parameters(const V* const sheared[9], int candidates,
+                                              const TriangleRay& ray, float tmax, float* t,
+                                              float* u, float* v) {
   constexpr int kCount = Lanes<V>::kCount;
   alignas(32) float s[9][kCount];
   for (int k = 0; k < 9; ++k) vstore(s[k], *sheared[k]);
   int mask = 0;
   for (int first = 0; first < kCount; first += 4) {
+    if (((candidates >> first) & 15) == 0) continue;
     mask |= double_hit_parameters4(&s[0][first], kCount, ray.watertight.shear_z,
                                    ray.watertight.tmin, tmax, t + first, u + first, v + first)
             << first;
   }
-  return mask;
+  return mask & candidates;
 }
 
 /// Watertight triangle tests on the lanes of one or two blocks at once: the hit decision in
@@ -405,8 +407,7 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   if (mask != 0) {
     alignas(32) float lane_t[L::kCount], lane_u[L::kCount], lane_v[L::kCount];
     const V* sheared[9] = {&ax, &ay, &az, &bx, &by, &bz, &cx, &cy, &cz};
-    const int hit_mask =
-        mask & double_hit_parameters<V>(sheared, ray, tmax, lane_t, lane_u, lane_v);
+    const int hit_mask = double_hit_parameters<V>(sheared, mask, ray, tmax, lane_t, lane_u, lane_v);
     for (unsigned z = static_cast<unsigned>(hit_mask); z != 0; z &= z - 1) {
       const int lane = lowest_lane(z);
       // Lanes are taken in order and tmax shrinks with each, as the scalar test's interval does.
