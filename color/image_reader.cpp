@@ -250,7 +250,8 @@ void check_png_chunks(const std::filesystem::path& path) {
 // OpenImageIO's own open() would, when the reader for the extension fails, try every reader it
 // has (its DICOM reader loads a dictionary of several MB: seconds, found by fuzzing
 // environment_map); a file is read as what its first bytes say it is.
-std::unique_ptr<OIIO::ImageInput> open_image_file(const std::filesystem::path& path) {
+std::unique_ptr<OIIO::ImageInput> open_image_file(const std::filesystem::path& path,
+                                                  ImageFormats formats) {
   const ErrorLocation where{path.string(), 0, {}};
   std::string start(12, '\0');
   {
@@ -260,6 +261,9 @@ std::unique_ptr<OIIO::ImageInput> open_image_file(const std::filesystem::path& p
     start.resize(size_t(file.gcount()));
   }
   const std::string format = format_by_magic(start);
+  if (formats == ImageFormats::kOpenExrOnly && format != "openexr") {
+    throw Error(ErrorKind::kInput, "not an OpenEXR file", where);
+  }
   if (format.empty()) {
     throw Error(ErrorKind::kInput,
                 "cannot read the image: not a format prism reads (by its first bytes: OpenEXR, "

@@ -7,8 +7,6 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <memory>
 
 #include "color/image_output.h"
@@ -82,13 +80,9 @@ namespace {
 std::unique_ptr<OIIO::ImageInput> open_state_file(const fs::path& path, ImageMetadata& attributes) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw bad_file(path, "not a file");
-  // Not an EXR (an image of another format, an empty file): said plainly.
-  char magic[4] = {};
-  std::ifstream(path, std::ios::binary).read(magic, 4);
-  if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0) throw bad_file(path, "not an OpenEXR file");
   std::unique_ptr<OIIO::ImageInput> in;
   try {
-    in = open_image_file(path);
+    in = open_image_file(path, ImageFormats::kOpenExrOnly);
   } catch (const Error& e) {
     throw bad_file(path, e.message());
   }

@@ -59,6 +59,12 @@ PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& 
   s.octant = static_cast<unsigned>(_mm_movemask_ps(inv)) & 7u;
 }
 
+/// The row of WideNode::bounds holding the near planes on `axis` for a ray of `octant`: the
+/// upper (2 axis + 1) when the direction is negative on that axis; the far row is the other one.
+PRISM_KERNEL_INLINE int near_row(unsigned octant, int axis) {
+  return 2 * axis + static_cast<int>((octant >> axis) & 1u);
+}
+
 /// The box test's per-ray constants, with the rows of the near and far planes of each axis (by
 /// the ray's octant). kOctant is always kRuntimeOctant here (see below).
 template <int W, unsigned kOctant>
@@ -71,8 +77,8 @@ struct NodeRay<8, kOctant> {
       inv[a] = _mm256_set1_ps(s.inv[a]);
       near_offset[a] = _mm256_set1_ps(s.near_offset[a]);
       far_offset[a] = _mm256_set1_ps(s.far_offset[a]);
-      near_plane[a] = 2 * a + static_cast<int>((s.octant >> a) & 1u);
-      far_plane[a] = 2 * a + 1 - static_cast<int>((s.octant >> a) & 1u);
+      near_plane[a] = near_row(s.octant, a);
+      far_plane[a] = near_plane[a] ^ 1;
     }
   }
   __m256 inv[3], near_offset[3], far_offset[3];
@@ -87,8 +93,8 @@ struct NodeRay<4, kOctant> {
       inv[a] = _mm_set1_ps(s.inv[a]);
       near_offset[a] = _mm_set1_ps(s.near_offset[a]);
       far_offset[a] = _mm_set1_ps(s.far_offset[a]);
-      near_plane[a] = 2 * a + static_cast<int>((s.octant >> a) & 1u);
-      far_plane[a] = 2 * a + 1 - static_cast<int>((s.octant >> a) & 1u);
+      near_plane[a] = near_row(s.octant, a);
+      far_plane[a] = near_plane[a] ^ 1;
     }
   }
   __m128 inv[3], near_offset[3], far_offset[3];
@@ -410,8 +416,8 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
     const int hit_mask = double_hit_parameters<V>(sheared, mask, ray, tmax, lane_t, lane_u, lane_v);
     for (unsigned z = static_cast<unsigned>(hit_mask); z != 0; z &= z - 1) {
       const int lane = lowest_lane(z);
-      // Lanes are taken in order and tmax shrinks with each, as the scalar test's interval does.
-      if (lane_t[lane] > tmax) continue;
+      // Each lane is in [tmin, tmax] as the call began; after a lane is taken, hit.t is the
+      // shrunk tmax and comes_before_hit() refuses what lies beyond it.
       if (!any_hit && !comes_before_hit(lane_t[lane], geom(lane), prim(lane), hit)) continue;
       if (any_hit) return true;
       tmax = lane_t[lane];
