@@ -23,23 +23,34 @@ uint64_t dimension_hash(uint64_t pixel_hash, uint32_t dimension) {
 }
 
 uint32_t reverse_bits(uint32_t v) {
+  v = __builtin_bswap32(v);  // the byte order reversed, then the bits within each byte
   v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
   v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
-  v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
-  v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
-  return (v >> 16) | (v << 16);
+  return ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
 }
 
-uint32_t positive_count(int n) { return n > 0 ? uint32_t(n) : 1u; }
+/// The body of owen_scramble() on an already bit-reversed value: owen_scramble(v, seed) ==
+/// reverse_bits(owen_scramble_reversed(reverse_bits(v), seed)).
+uint32_t owen_scramble_reversed(uint32_t x, uint32_t seed) {
+  x ^= x * 0x3d20adeau;
+  x += seed;
+  x *= (seed >> 16) | 1u;
+  x ^= x * 0x05526c56u;
+  x ^= x * 0x53a22864u;
+  return x;
+}
 
-}  // namespace
+/// reverse_bits(sobol_dimension1(index)) without a branch per bit: column j of the reversed
+/// generator is row j of Pascal's triangle mod 2 (r_0 = 1, r_j = r_{j-1} ^ (r_{j-1} << 1)).
+uint32_t sobol_dimension1_reversed(uint32_t index) {
+  uint32_t result = 0;
+  for (uint32_t r = 1; index != 0; index >>= 1, r ^= r << 1) result ^= r & (0u - (index & 1u));
+  return result;
+}
 
-uint32_t permutation_element(uint32_t index, uint32_t count, uint64_t seed) {
-  if (count <= 1) return 0;
-  // A bijection on k-bit integers (k = bit width of count - 1), iterated until the value is in
-  // [0, count) again ("cycle walking"): the cycle through `index` returns into the range, so
-  // the restriction is a permutation of [0, count).
-  const int bits = std::bit_width(count - 1);
+/// permutation_element() with its count's bit width precomputed (`bits` = bit_width(count -
+/// 1), count > 1): the same bijection step for step.
+uint32_t permutation_element_of_width(uint32_t index, uint32_t count, int bits, uint64_t seed) {
   const uint32_t mask = bits >= 32 ? 0xffffffffu : (1u << bits) - 1u;
   const int shift = std::max(1, bits / 2);
   const uint32_t a = uint32_t(seed) & mask;
@@ -56,6 +67,18 @@ uint32_t permutation_element(uint32_t index, uint32_t count, uint64_t seed) {
     v ^= v >> shift;
   } while (v >= count);
   return v;
+}
+
+uint32_t positive_count(int n) { return n > 0 ? uint32_t(n) : 1u; }
+
+}  // namespace
+
+uint32_t permutation_element(uint32_t index, uint32_t count, uint64_t seed) {
+  if (count <= 1) return 0;
+  // A bijection on k-bit integers (k = bit width of count - 1), iterated until the value is in
+  // [0, count) again ("cycle walking"): the cycle through `index` returns into the range, so
+  // the restriction is a permutation of [0, count).
+  return permutation_element_of_width(index, count, std::bit_width(count - 1), seed);
 }
 
 uint32_t sobol_dimension0(uint32_t index) { return reverse_bits(index); }
@@ -76,13 +99,7 @@ uint32_t owen_scramble(uint32_t v, uint32_t seed) {
   // Adding, multiplying and xoring with x * even only carry information from low to high bits,
   // so each output bit depends on itself (flipped or not) and on less significant bits of x:
   // a nested scramble of the original value.
-  uint32_t x = reverse_bits(v);
-  x ^= x * 0x3d20adeau;
-  x += seed;
-  x *= (seed >> 16) | 1u;
-  x ^= x * 0x05526c56u;
-  x ^= x * 0x53a22864u;
-  return reverse_bits(x);
+  return reverse_bits(owen_scramble_reversed(reverse_bits(v), seed));
 }
 
 // ---- JitteredSampler -------------------------------------------------------------------
@@ -140,39 +157,47 @@ SobolSampler::SobolSampler(uint64_t seed, int samples_per_pixel)
 
 void SobolSampler::set_sample_count(int samples_per_pixel) {
   samples_per_pixel_ = positive_count(samples_per_pixel);
+  permutation_bits_ = uint32_t(std::bit_width(samples_per_pixel_ - 1));
 }
 
 void SobolSampler::start_pixel_sample(glm::ivec2 pixel, uint32_t index) {
   pixel_hash_ = pixel_hash(key_of(pixel), seed_hash_);
-  index_ = index;
+  // Indices past the sample count form further blocks, each permuted on its own, so that any
+  // index stays valid. The split does not depend on the dimension: done once here.
+  block_ = index / samples_per_pixel_;
+  index_in_block_ = index % samples_per_pixel_;
   dimension_ = 0;
 }
 
 uint32_t SobolSampler::permuted_index(uint64_t h) const {
-  // Indices past the sample count form further blocks, each permuted on its own, so that any
-  // index stays valid.
   const uint32_t n = samples_per_pixel_;
-  const uint32_t block = index_ / n;
-  return block * n + permutation_element(index_ % n, n, mix_bits(h + block));
+  if (n <= 1) return block_;
+  return block_ * n + permutation_element_of_width(index_in_block_, n, int(permutation_bits_),
+                                                   mix_bits(h + block_));
 }
+
+// The scrambles below work on bit-reversed values: sobol_dimension0(i) is reverse_bits(i), so
+// owen_scramble(sobol_dimension0(i), s) is reverse_bits(owen_scramble_reversed(i, s)), and
+// sobol_dimension1 is built reversed; the values are those of owen_scramble() bit for bit.
 
 float SobolSampler::get_1d() {
   const uint64_t h = dimension_hash(pixel_hash_, dimension_++);
   const uint32_t i = permuted_index(h);
-  return bits_to_unit_float(owen_scramble(sobol_dimension0(i), uint32_t(h >> 32)));
+  return bits_to_unit_float(reverse_bits(owen_scramble_reversed(i, uint32_t(h >> 32))));
 }
 
 Vec2 SobolSampler::get_2d() {
   const uint64_t h = dimension_hash(pixel_hash_, dimension_);
   dimension_ += 2;
   const uint32_t i = permuted_index(h);
-  return {bits_to_unit_float(owen_scramble(sobol_dimension0(i), uint32_t(h >> 32))),
-          bits_to_unit_float(owen_scramble(sobol_dimension1(i), uint32_t(h)))};
+  return {bits_to_unit_float(reverse_bits(owen_scramble_reversed(i, uint32_t(h >> 32)))),
+          bits_to_unit_float(
+              reverse_bits(owen_scramble_reversed(sobol_dimension1_reversed(i), uint32_t(h))))};
 }
 
 std::unique_ptr<Sampler> SobolSampler::clone() const {
   auto copy = std::make_unique<SobolSampler>(seed_);
-  copy->samples_per_pixel_ = samples_per_pixel_;
+  copy->set_sample_count(int(samples_per_pixel_));
   return copy;
 }
 

@@ -48,15 +48,17 @@ class SobolSampler final : public Sampler {
   void set_sample_count(int samples_per_pixel) override;
 
  private:
-  /// The permuted Sobol index of the current sample in the current dimension, and the hash
-  /// that keys the scrambles.
+  /// The permuted Sobol index of the current sample in the dimension keyed by
+  /// `dimension_hash`: permutation_element(index % n, n, ...) offset by its block of n.
   uint32_t permuted_index(uint64_t dimension_hash) const;
 
   uint64_t seed_;
   uint64_t seed_hash_;  ///< the seed's part of the dimension hashes
   uint32_t samples_per_pixel_ = 1;
-  uint64_t pixel_hash_ = 0;  ///< the pixel's and seed's part of the dimension hashes
-  uint32_t index_ = 0;
+  uint32_t permutation_bits_ = 0;  ///< bit width of samples_per_pixel_ - 1
+  uint64_t pixel_hash_ = 0;        ///< the pixel's and seed's part of the dimension hashes
+  uint32_t index_in_block_ = 0;    ///< index % samples_per_pixel_
+  uint32_t block_ = 0;             ///< index / samples_per_pixel_
   uint32_t dimension_ = 0;
 };
 
