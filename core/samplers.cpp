@@ -150,8 +150,8 @@ std::unique_ptr<Sampler> JitteredSampler::clone() const {
 
 // ---- SobolSampler ----------------------------------------------------------------------
 
-SobolSampler::SobolSampler(uint64_t seed, int samples_per_pixel)
-    : seed_(seed), seed_hash_(seed_hash(seed)) {
+SobolSampler::SobolSampler(uint64_t seed, int samples_per_pixel, uint32_t sobol_dimensions)
+    : seed_(seed), seed_hash_(seed_hash(seed)), sobol_dimensions_(sobol_dimensions) {
   set_sample_count(samples_per_pixel);
 }
 
@@ -166,7 +166,12 @@ void SobolSampler::start_pixel_sample(glm::ivec2 pixel, uint32_t index) {
   // index stays valid. The split does not depend on the dimension: done once here.
   block_ = index / samples_per_pixel_;
   index_in_block_ = index % samples_per_pixel_;
+  sample_hash_ = mix_bits(pixel_hash_ ^ (uint64_t(index) * 0x9e3779b97f4a7c15ULL));
   dimension_ = 0;
+}
+
+uint64_t SobolSampler::hashed_bits() const {
+  return mix_bits(sample_hash_ + uint64_t(dimension_) * 0xd1b54a32d192ed03ULL);
 }
 
 uint32_t SobolSampler::permuted_index(uint64_t h) const {
@@ -181,12 +186,22 @@ uint32_t SobolSampler::permuted_index(uint64_t h) const {
 // sobol_dimension1 is built reversed; the values are those of owen_scramble() bit for bit.
 
 float SobolSampler::get_1d() {
+  if (dimension_ >= sobol_dimensions_) {
+    const uint64_t bits = hashed_bits();
+    ++dimension_;
+    return bits_to_unit_float(uint32_t(bits >> 32));
+  }
   const uint64_t h = dimension_hash(pixel_hash_, dimension_++);
   const uint32_t i = permuted_index(h);
   return bits_to_unit_float(reverse_bits(owen_scramble_reversed(i, uint32_t(h >> 32))));
 }
 
 Vec2 SobolSampler::get_2d() {
+  if (dimension_ >= sobol_dimensions_) {
+    const uint64_t bits = hashed_bits();
+    dimension_ += 2;
+    return {bits_to_unit_float(uint32_t(bits >> 32)), bits_to_unit_float(uint32_t(bits))};
+  }
   const uint64_t h = dimension_hash(pixel_hash_, dimension_);
   dimension_ += 2;
   const uint32_t i = permuted_index(h);
@@ -196,8 +211,7 @@ Vec2 SobolSampler::get_2d() {
 }
 
 std::unique_ptr<Sampler> SobolSampler::clone() const {
-  auto copy = std::make_unique<SobolSampler>(seed_);
-  copy->set_sample_count(int(samples_per_pixel_));
+  auto copy = std::make_unique<SobolSampler>(seed_, int(samples_per_pixel_), sobol_dimensions_);
   return copy;
 }
 
@@ -230,9 +244,12 @@ const Registry<Sampler>& sampler_registry() {
                 }},
           Entry{"sobol",
                 "Owen-scrambled Sobol (0,2)-sequence per dimension pair, padded by per-pixel "
-                "index permutations",
+                "index permutations, for the first sampler.sobol_dimensions (16) dimensions",
                 [](const ParamSet& p) -> std::unique_ptr<Sampler> {
-                  return std::make_unique<SobolSampler>(seed_param(p), spp_param(p));
+                  return std::make_unique<SobolSampler>(
+                      seed_param(p), spp_param(p),
+                      uint32_t(p.get_int("sampler.sobol_dimensions", SobolSampler::kSobolDimensions,
+                                         0, 1 << 30)));
                 }},
       });
   return registry;

@@ -37,14 +37,14 @@ TEST(CoreSamplers, ValuesArePureFunctionsInUnitInterval) {
       Sampler& s = pass == 0 ? *a : *b;
       for (uint32_t i = 0; i < 40; ++i) {
         s.start_pixel_sample({3, 5}, i);
-        for (int d = 0; d < 10; ++d) {
+        for (int d = 0; d < 30; ++d) {  // past the Sobol sampler's 16 stratified dimensions
           const float v = d % 3 == 0 ? s.get_2d().y : s.get_1d();
           ASSERT_GE(v, 0.0f);
           ASSERT_LT(v, 1.0f);
           if (pass == 0) {
             first.push_back(v);
           } else {
-            ASSERT_EQ(v, first[i * 10 + d]);  // clone, same inputs: same value
+            ASSERT_EQ(v, first[i * 30 + d]);  // clone, same inputs: same value
           }
         }
       }
@@ -73,7 +73,7 @@ TEST(CoreSamplers, ValuesAreUniform) {
     for (int p = 0; p < 500; ++p) {
       for (uint32_t i = 0; i < 8; ++i) {
         s->start_pixel_sample({p % 37, p / 37}, i);
-        for (int d = 0; d < 6; ++d) {
+        for (int d = 0; d < 14; ++d) {  // Sobol's stratified dimensions and hashed ones
           const Vec2 u = s->get_2d();
           observed[size_t(u.x * 64)] += 1;
           observed[size_t(u.y * 64)] += 1;
@@ -120,7 +120,7 @@ TEST(CoreSamplers, SobolPairsAreZeroTwoNets) {
     const uint32_t n = 1u << m;
     SobolSampler s(5, int(n));
     for (int pixel = 0; pixel < 3; ++pixel) {
-      for (int pair = 0; pair < 5; ++pair) {
+      for (int pair : {0, 1, 2, 3, 4, int(SobolSampler::kSobolDimensions / 2 - 1)}) {
         std::vector<Vec2> points;
         for (uint32_t i = 0; i < n; ++i) {
           s.start_pixel_sample({pixel, 2 * pixel}, i);
@@ -179,6 +179,35 @@ TEST(CoreSamplers, SobolValuesArePinned) {
       ASSERT_EQ(a.y, b.y);
     }
   }
+}
+
+TEST(CoreSamplers, SobolDimensionsPastTheStratifiedOnesAreHashed) {
+  // With sobol_dimensions = 2 the second pair is no longer a net but independent values: over
+  // 64 samples of one pixel some of the 8 x 8 cells hold two points (a net holds one each),
+  // and the values do not depend on the sample count (no permutation of the pixel's indices).
+  SobolSampler two(5, 64, 2), two_other_count(5, 48, 2), all(5, 64, 1000);
+  std::vector<Vec2> hashed, stratified;
+  for (uint32_t i = 0; i < 64; ++i) {
+    for (Sampler* s : {static_cast<Sampler*>(&two), static_cast<Sampler*>(&two_other_count),
+                       static_cast<Sampler*>(&all)}) {
+      s->start_pixel_sample({7, 9}, i);
+      s->get_2d();
+    }
+    const Vec2 u = two.get_2d();
+    EXPECT_EQ(u, two_other_count.get_2d());
+    hashed.push_back(u);
+    stratified.push_back(all.get_2d());
+  }
+  EXPECT_TRUE(one_per_cell(stratified, 8, 8));
+  EXPECT_FALSE(one_per_cell(hashed, 8, 8));
+  // The registry passes the parameter on.
+  ParamSet params;
+  params.set("sampler.sobol_dimensions", "2");
+  auto from_registry = create_sampler("sobol", 5, params);
+  from_registry->set_sample_count(64);
+  from_registry->start_pixel_sample({7, 9}, 3);
+  from_registry->get_2d();
+  EXPECT_EQ(from_registry->get_2d(), hashed[3]);
 }
 
 TEST(CoreSamplers, SobolDimension1StartsAsTheSobolSequence) {
