@@ -36,12 +36,13 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
   si.prim_id = hit.prim_id;
   if (geometry.is_sphere(hit.geom_id)) {
     const Sphere& s = geometry.spheres[hit.prim_id];
-    const float phi = hit.u * 2.0f * kPi;
-    const float theta = hit.v * kPi;
-    const Vec3 n{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
-    // Reprojected onto the sphere in double, so the float point is one rounding off it.
-    const DVec3 local = DVec3(n) * (double(s.radius) / glm::length(DVec3(n)));
-    si.position = Vec3(DVec3(s.center) + local);
+    // The ray's point at t, reprojected onto the sphere in double, so the float point is one
+    // rounding off it (no trigonometry: the hit's (u, v) are kept only as the uv).
+    const DVec3 along = DVec3(ray.origin) + double(hit.t) * DVec3(ray.direction) - DVec3(s.center);
+    const double along_length = glm::length(along);
+    const DVec3 unit = along_length > 0.0 ? along / along_length : DVec3(0.0, 0.0, 1.0);
+    const Vec3 n(unit);
+    si.position = Vec3(DVec3(s.center) + unit * double(s.radius));
     si.position_error = rebuilt_point_error(si.position, glm::abs(s.center) + Vec3(s.radius)) +
                         Vec3(kSphereTestGamma * s.radius);
     // The sphere's normal at the float point: far from the world origin the point's rounding
