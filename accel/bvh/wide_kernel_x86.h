@@ -403,6 +403,15 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
       vandnot(vor(vor(L::sign_mask(outside), special), out_of_range), vcmp<_CMP_NEQ_UQ>(det, zero));
   const int mask = vmask(ok);
   if (mask == 0 && special_mask == 0) return false;
+  // Any hit: a lane whose t lies in [tmin, tmax] even moved by its error bound is hit in double
+  // precision too (its double t is within the bound of this one, and rounding it to float keeps
+  // it between the float tmin and tmax), so the answer is known without the double step. The
+  // same bound the filter above relies on; the answer is still brute force's.
+  if (any_hit && mask != 0) {
+    const V surely_in_range = vand(vcmp<_CMP_GE_OQ>(vsub(t, t_error), L::narrow(ray.tmin)),
+                                   vcmp<_CMP_LE_OQ>(vadd(t, t_error), L::set1(tmax)));
+    if ((vmask(surely_in_range) & mask) != 0) return true;
+  }
   auto geom = [&](int lane) { return blocks[lane >> 2]->geom_id[lane & 3]; };
   auto prim = [&](int lane) { return blocks[lane >> 2]->prim_id[lane & 3]; };
   // The lanes the ray passes through take t, u, v in double precision, four lanes at a time, as
