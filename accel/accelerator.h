@@ -50,6 +50,7 @@ class Accelerator {
   /// The closest hit in [tmin, tmax] (exact ties: comes_before()), or nothing.
   std::optional<Hit> intersect(const Ray& ray) const {
     PRISM_CHECK(geometry_ != nullptr);
+    if (is_prepared_query(ray)) return intersect_prepared(ray);
     const std::optional<Ray> prepared = prepare_query(ray);
     if (!prepared) return std::nullopt;
     return intersect_prepared(*prepared);
@@ -57,6 +58,7 @@ class Accelerator {
   /// Whether any hit exists in [tmin, tmax]; agrees with intersect().has_value().
   bool occluded(const Ray& ray) const {
     PRISM_CHECK(geometry_ != nullptr);
+    if (is_prepared_query(ray)) return occluded_prepared(ray);
     const std::optional<Ray> prepared = prepare_query(ray);
     if (!prepared) return false;
     return occluded_prepared(*prepared);

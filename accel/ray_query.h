@@ -28,6 +28,14 @@ inline std::optional<Ray> prepare_query(const Ray& ray) {
   return out;
 }
 
+/// Whether prepare_query(ray) would return `ray` itself unchanged (a valid ray whose tmin is
+/// already >= 0, as every ray the integrators make): then the ray is traced as it is, without
+/// the copy, whose 4-byte tmin store and 16-byte reload stall the store forwarding.
+inline bool is_prepared_query(const Ray& ray) {
+  return is_finite(ray.origin) && is_finite(ray.direction) && ray.direction != Vec3(0.0f) &&
+         ray.tmin >= 0.0f && ray.tmin <= ray.tmax;
+}
+
 /// The closest-hit order: smaller t first; at exactly equal t the lower (geom_id, prim_id)
 /// wins. Every backend that does its own traversal applies it, so brute and bvh agree even on
 /// exact ties. Returns whether the candidate comes before `best`.
