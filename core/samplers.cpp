@@ -177,10 +177,10 @@ uint64_t SobolSampler::hashed_bits() const {
 uint32_t SobolSampler::permuted_index(uint64_t h) const {
   const uint32_t n = samples_per_pixel_;
   if (n <= 1) return block_;
-  // The permutation's key: the dimension hash turned, so that the permutation's constants (its
-  // low bits of each half) come from other bits than the scrambles' additive low bits, and
-  // varied per block. No further mix_bits(): the dimension hash is already well mixed, and
-  // permutation_element_of_width() mixes its key once more itself.
+  // The permutation's key: the dimension hash turned, so that the permutation's constants (the
+  // low bits of each half of the key) come from other bits than the scrambles' additive low
+  // bits, and varied per block. No mix_bits() of its own: the dimension hash is already well
+  // mixed (permutation_element_of_width() derives one more constant from it with mix_bits()).
   const uint64_t key = std::rotl(h, 23) ^ (uint64_t(block_) * 0x9e3779b97f4a7c15ULL);
   return block_ * n + permutation_element_of_width(index_in_block_, n, int(permutation_bits_), key);
 }
