@@ -113,6 +113,12 @@ class Film {
   /// The state of `pixel` (inside window()), for the tile loops and for storage.
   FilmPixel& pixel(glm::ivec2 p) { return pixels_[index(p)]; }
   const FilmPixel& pixel(glm::ivec2 p) const { return pixels_[index(p)]; }
+  /// Starts loading the state of `p` (inside window()) into the cache for a write soon: at one
+  /// sample per pass a pixel's state has left the cache since its last sample.
+  void prefetch(glm::ivec2 p) const {
+    const char* state = reinterpret_cast<const char*>(&pixels_[index(p)]);
+    for (size_t line = 0; line < sizeof(FilmPixel); line += 64) __builtin_prefetch(state + line, 1);
+  }
   /// Every pixel of the window, row-major.
   std::span<FilmPixel> pixels() { return pixels_; }
   std::span<const FilmPixel> pixels() const { return pixels_; }

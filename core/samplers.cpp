@@ -248,7 +248,8 @@ const Registry<Sampler>& sampler_registry() {
                 }},
           Entry{"sobol",
                 "Owen-scrambled Sobol (0,2)-sequence per dimension pair, padded by per-pixel "
-                "index permutations, for the first sampler.sobol_dimensions (16) dimensions",
+                "index permutations, for the first sampler.sobol_dimensions (" +
+                    std::to_string(SobolSampler::kSobolDimensions) + ") dimensions",
                 [](const ParamSet& p) -> std::unique_ptr<Sampler> {
                   return std::make_unique<SobolSampler>(
                       seed_param(p), spp_param(p),

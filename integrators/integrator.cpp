@@ -38,14 +38,8 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
     for (int x = tile.begin.x; x < tile.end.x; ++x) {
       const glm::ivec2 pixel{x, y};
       FilmPixel& state = film.pixel(pixel);
-      // With one sample per pass (the default at 64 spp) each pixel's film state is touched
-      // once per pass and has left the cache since: start loading the next pixel's lines now.
-      if (x + 1 < tile.end.x) {
-        const char* next = reinterpret_cast<const char*>(&state + 1);
-        for (size_t line = 0; line < sizeof(FilmPixel); line += 64) {
-          __builtin_prefetch(next + line, 1);
-        }
-      }
+      // With one sample per pass (the default at 64 spp) the next pixel's film state is cold.
+      if (x + 1 < tile.end.x) film.prefetch({x + 1, y});
       for (uint32_t s = std::max(range.first, state.progress); s < range.last && !state.converged;
            ++s) {
         sampler->start_pixel_sample(pixel, s);

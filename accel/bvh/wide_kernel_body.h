@@ -172,24 +172,14 @@ PRISM_KERNEL_INLINE bool dispatch_octant(unsigned octant, Visit&& visit) {
   if constexpr (kKernelUsesRuntimeOctant) {
     return visit(OctantTag<kRuntimeOctant>{});
   } else {
-    switch (octant) {
-      case 0:
-        return visit(OctantTag<0>{});
-      case 1:
-        return visit(OctantTag<1>{});
-      case 2:
-        return visit(OctantTag<2>{});
-      case 3:
-        return visit(OctantTag<3>{});
-      case 4:
-        return visit(OctantTag<4>{});
-      case 5:
-        return visit(OctantTag<5>{});
-      case 6:
-        return visit(OctantTag<6>{});
-      default:
-        return visit(OctantTag<7>{});
+    // visit(OctantTag<k>{}) for the k in 0..7 equal to `octant`: the eight instantiations
+    // without eight hand-written cases.
+    return [&]<unsigned... k>(std::integer_sequence<unsigned, k...>) {
+      bool result = false;
+      (void)((octant == k ? (result = visit(OctantTag<k>{}), true) : false) || ...);
+      return result;
     }
+    (std::make_integer_sequence<unsigned, 8>{});
   }
 }
 

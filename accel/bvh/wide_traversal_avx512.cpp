@@ -4,6 +4,8 @@
 
 #include <immintrin.h>
 
+#include <utility>  // std::integer_sequence, for wide_kernel_body.h
+
 #include "accel/bvh/build_reference.h"
 #include "accel/bvh/wide_node.h"
 #include "accel/bvh/wide_traversal.h"

@@ -1,6 +1,8 @@
 // The wide BVH's portable traversal kernels (baseline x86-64, every width): the fallback on
 // CPUs without AVX2 and the only kernels for the binary layout.
 
+#include <utility>  // std::integer_sequence, for wide_kernel_body.h
+
 #include "accel/bvh/build_reference.h"
 #include "accel/bvh/wide_node.h"
 #include "accel/bvh/wide_traversal.h"
