@@ -73,4 +73,22 @@ Ray CameraRayGenerator::generate_ray(Vec2 film, Vec2 lens) const {
   return ray;
 }
 
+std::optional<FilmProjection> CameraRayGenerator::project(const Vec3& p) const {
+  const Vec3 d = p - camera_.position;
+  const float depth = glm::dot(d, forward_);
+  if (!(depth >= camera_.znear) || !(depth <= camera_.zfar)) return std::nullopt;
+  // Inverse of generate_ray(): the direction's camera-space components over its view depth.
+  const Vec2 film(0.5f * (glm::dot(d, right_) / depth / tan_h_ + 1.0f),
+                  0.5f * (1.0f - glm::dot(d, true_up_) / depth / tan_v_));
+  if (!(film.x >= 0.0f && film.x < 1.0f && film.y >= 0.0f && film.y < 1.0f)) return std::nullopt;
+  FilmProjection f;
+  f.film = film;
+  f.distance = glm::length(d);
+  if (!(f.distance > 0.0f)) return std::nullopt;
+  f.to_camera = -d / f.distance;
+  f.cos_view = depth / f.distance;
+  f.near_point = camera_.position + d * (camera_.znear / depth);
+  return f;
+}
+
 }  // namespace prism

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include "core/math.h"
 #include "core/ray.h"
 
@@ -31,6 +33,15 @@ struct Camera {
   Ray generate_ray(Vec2 film, Vec2 lens = Vec2(0.5f)) const;
 };
 
+/// Where a pinhole camera sees a point, from CameraRayGenerator::project().
+struct FilmProjection {
+  Vec2 film{0.0f};        ///< film position in [0,1)^2, as generate_ray() takes it
+  Vec3 to_camera{0.0f};   ///< unit, from the point toward the camera
+  float distance = 0.0f;  ///< from the point to the camera
+  float cos_view = 0.0f;  ///< cosine between the camera's ray to the point and the view axis
+  Vec3 near_point{0.0f};  ///< where that ray starts: its point at view depth znear
+};
+
 /// Camera::generate_ray() with the terms that depend only on the camera (its basis, the
 /// tangents of the half fields of view) computed once, for render loops: the same rays, bit
 /// for bit, without two tan() calls and three normalisations per ray. Copies the camera.
@@ -39,6 +50,14 @@ class CameraRayGenerator {
   explicit CameraRayGenerator(const Camera& camera);
   /// Camera::generate_ray(film, lens) of the camera given to the constructor.
   Ray generate_ray(Vec2 film, Vec2 lens = Vec2(0.5f)) const;
+  /// Where a pinhole camera (lens_radius 0) sees `p`: the inverse of generate_ray(). Nothing
+  /// when p is behind the camera, off the film, or at a view depth outside [znear, zfar].
+  std::optional<FilmProjection> project(const Vec3& p) const;
+  /// The area of one pixel of a width x height image on the plane at view depth 1, over which
+  /// generate_ray() spreads a pixel's rays uniformly.
+  float pixel_area(int width, int height) const {
+    return (2.0f * tan_h_ / float(width)) * (2.0f * tan_v_ / float(height));
+  }
 
  private:
   Camera camera_;

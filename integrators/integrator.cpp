@@ -4,6 +4,7 @@
 
 #include "core/parallel.h"
 #include "integrators/bsdf/bsdf_factory.h"
+#include "integrators/light_traced_image.h"
 #include "integrators/sampling/warp.h"
 
 namespace prism {
@@ -34,6 +35,11 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
   // Adaptive sampling may stop after any batch: the sampler stratifies each batch of samples
   // on its own, so that every prefix the stopping rule can choose is well distributed.
   sampler->set_sample_count(batch > 0 ? std::min(batch, spp) : spp);
+  // The light-traced images of this range's sample indices, fetched when first needed (each
+  // pixel of the tile runs through the range).
+  const LightTracedImage* light_traced = estimator_->light_traced_image();
+  std::vector<std::shared_ptr<const SparseSampleImage>> light_images;
+  if (light_traced && range.last > range.first) light_images.resize(range.last - range.first);
   for (int y = tile.begin.y; y < tile.end.y; ++y) {
     for (int x = tile.begin.x; x < tile.end.x; ++x) {
       const glm::ivec2 pixel{x, y};
@@ -47,7 +53,12 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
         const Vec2 lens = sampler->get_2d();
         const Ray ray = camera.generate_ray(film_position, lens);
         AovSample aovs;
-        const Rgb radiance = estimator_->li(ray, *sampler, aovs);
+        Rgb radiance = estimator_->li(ray, *sampler, aovs);
+        if (light_traced) {
+          std::shared_ptr<const SparseSampleImage>& image = light_images[s - range.first];
+          if (!image) image = light_traced->sample(s);
+          radiance += image->at(pixel);
+        }
         film.add_sample(pixel, radiance, aovs);
         if (batch <= 0) continue;
         // Illuminance sums in double, in sample order: thousands of samples.

@@ -15,6 +15,8 @@
 
 namespace prism {
 
+class LightTracedImage;
+
 /// Everything an integrator reads while rendering, besides its own parameters. All references
 /// outlive the render.
 struct RenderContext {
@@ -28,6 +30,9 @@ struct RenderContext {
   /// Height of the whole image in pixels, which with the camera's field of view says how wide
   /// a pixel is for texture filtering; 0: textures are looked up without filtering.
   int image_height = 0;
+  /// Width of the whole image in pixels (light tracers splat onto it); 0: unknown, no light
+  /// tracing.
+  int image_width = 0;
   int adaptive_batch = 0;                ///< adaptive sampling batch size, 0 = off (-a B tol)
   float adaptive_tolerance = 0.05f;      ///< adaptive sampling tolerance (-a B tol)
   ProgressReporter* progress = nullptr;  ///< may be null; Integrator::render() advances it
@@ -72,6 +77,9 @@ class PixelEstimator {
   /// Radiance arriving along the camera ray `ray`; sets `aovs` (given default-initialised) to
   /// the AOVs of the ray's first hit, left as they are where the ray escapes.
   virtual Rgb li(const Ray& ray, Sampler& sampler, AovSample& aovs) const = 0;
+  /// Radiance traced from the lights for this render, added to every camera sample of the
+  /// same pixel and sample index (light paths li() leaves to it); null: none.
+  virtual const LightTracedImage* light_traced_image() const { return nullptr; }
 };
 
 /// Integrators that estimate radiance independently per camera ray: the tile loop, per-tile

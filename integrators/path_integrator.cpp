@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/caustic_tracer.h"
+#include "integrators/light_traced_image.h"
 #include "integrators/sampling/warp.h"
 
 namespace prism {
@@ -15,19 +17,36 @@ PathIntegrator::Settings::Settings(const ParamSet& params)
       russian_roulette(params.get_bool("path.rr", true)),
       rr_probability(float(params.get_float("path.rr_probability", 0.0, 0.0, 1.0))),
       rr_depth(int(params.get_int("path.rr_depth", rr_probability > 0.0f ? 1 : 3, 0, 1 << 20))),
-      rr_sqrt(params.get_bool("path.rr_sqrt", true)) {}
+      rr_sqrt(params.get_bool("path.rr_sqrt", true)),
+      caustics(params.get_bool("path.caustics", true)),
+      caustic_paths(params.get_float("path.caustic_paths", kDefaultCausticPaths, 0x1p-20, 64.0)) {}
 
 namespace {
 
 class PathEstimator final : public PixelEstimator {
  public:
-  PathEstimator(const RenderContext& context, const PathIntegrator::Settings& settings)
+  PathEstimator(const RenderContext& context, const PathIntegrator::Settings& settings, int width,
+                int height)
       : context_(context),
         settings_(settings),
         shading_(context.scene, settings.light_transport.bsdf, settings.light_transport.lights,
-                 texture_filter_of(context)) {}
+                 texture_filter_of(context)) {
+    if (settings.caustics && settings.mis && settings.accumulate &&
+        !settings.light_transport.hemisphere && width > 0 && height > 0 &&
+        CausticTracer::applies(context, shading_, settings.max_depth)) {
+      caustics_ = std::make_unique<CausticTracer>(context, shading_, settings.max_depth,
+                                                  settings.caustic_paths, width, height);
+      light_traced_ = std::make_unique<LightTracedImage>(
+          [tracer = caustics_.get()](uint32_t sample, uint32_t first, uint32_t last,
+                                     std::vector<Splat>& out) {
+            tracer->trace(sample, first, last, out);
+          },
+          caustics_->paths(), width, height);
+    }
+  }
 
   Rgb li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const override;
+  const LightTracedImage* light_traced_image() const override { return light_traced_.get(); }
 
  private:
   /// Light arriving at `sp` from one light chosen by power, MIS-weighted against BSDF
@@ -37,6 +56,8 @@ class PathEstimator final : public PixelEstimator {
   const RenderContext& context_;
   const PathIntegrator::Settings settings_;
   const ShadingContext shading_;
+  std::unique_ptr<CausticTracer> caustics_;  ///< null when light tracing does not apply
+  std::unique_ptr<LightTracedImage> light_traced_;
 };
 
 Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const {
@@ -82,6 +103,10 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
   bool specular = true;    // the camera "bounce" counts as specular: emission seen in full
   float bsdf_pdf = 0.0f;
   Vec3 previous_position = ray.origin;
+  // How far the path follows what the light tracer carries (caustics_): kNone, or from a
+  // first hit whose sampled lobe is not delta (kFromFirstHit) through one or more purely
+  // specular surfaces only (kCaustic): emitters it covers, found then, are its.
+  enum class Caustic { kNone, kFromFirstHit, kCaustic } caustic = Caustic::kNone;
   for (int bounces = 0;; ++bounces) {
     const std::optional<Hit> hit = context.accel.intersect(ray);
     if (!hit) {
@@ -107,7 +132,8 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
       aovs.normal = si.shading_normal;
       aovs.depth = hit->t * glm::length(ray.direction);
     }
-    if (const LightSource* light = shading.lights.surface_light(si)) {
+    if (const LightSource* light = shading.lights.surface_light(si);
+        light && !(caustic == Caustic::kCaustic && CausticTracer::covers(*light))) {
       const Rgb le = light->le(si, -glm::normalize(ray.direction));
       if (max_component(le) > 0.0f) {
         if (specular) {
@@ -140,6 +166,13 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
     beta *= bs->f * (std::abs(glm::dot(bs->wi, si.shading_normal)) / bs->pdf);
     if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
     specular = bs->is_delta();
+    if (caustics_) {
+      if (bounces == 0) {
+        caustic = specular ? Caustic::kNone : Caustic::kFromFirstHit;
+      } else if (caustic != Caustic::kNone) {
+        caustic = bsdf.is_delta() ? Caustic::kCaustic : Caustic::kNone;
+      }
+    }
     bsdf_pdf = bs->pdf;
     previous_position = si.position;
     ray = sp.spawn(bs->wi);
@@ -165,7 +198,8 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
 PathIntegrator::PathIntegrator(const ParamSet& params) : settings_(params) {}
 
 std::unique_ptr<PixelEstimator> PathIntegrator::prepare(const RenderContext& context) const {
-  return std::make_unique<PathEstimator>(context, settings_);
+  return std::make_unique<PathEstimator>(context, settings_, context.image_width,
+                                         context.image_height);
 }
 
 }  // namespace prism

@@ -20,6 +20,13 @@ namespace prism {
 ///   throughput is min(1, sqrt(max component)), as Cycles does; false: min(1, max component),
 ///   which ends more paths: about 35% more variance for 6% less work in the Cornell boxes,
 ///   docs/PERFORMANCE.md).
+/// - caustics (default true): caustics seen directly (light from an emissive mesh or sphere,
+///   off one or more purely specular surfaces, onto the camera's first hit) are light-traced
+///   (CausticTracer) instead of left to the rare BSDF-sampled camera path that finds them;
+///   applies with mis, accumulate and without hemisphere, to pinhole cameras of scenes with a
+///   specular material, max_depth >= 2.
+/// - caustic_paths (default kDefaultCausticPaths, in (0, 64]): light paths per pixel of the
+///   whole image per sample index.
 /// - microfacet, light_samples, hemisphere, ambient_visible, two_sided_emitters: see
 ///   LightTransportSettings.
 class PathIntegrator final : public PixelIntegrator {
@@ -35,7 +42,11 @@ class PathIntegrator final : public PixelIntegrator {
     float rr_probability;
     int rr_depth;
     bool rr_sqrt;
+    bool caustics;
+    double caustic_paths;
   };
+
+  static constexpr double kDefaultCausticPaths = 0.25;
 
   explicit PathIntegrator(const ParamSet& params);
   std::string_view name() const override { return "path"; }

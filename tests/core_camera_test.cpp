@@ -266,6 +266,36 @@ std::string validation_result(const Camera& camera) {
   return "none";
 }
 
+TEST(CoreCamera, ProjectInvertsGenerateRay) {
+  Camera c = oblique_camera();
+  c.znear = 0.5f;
+  c.zfar = 40.0f;
+  const CameraRayGenerator camera(c);
+  for (const Vec2 film : {Vec2(0.5f), Vec2(0.1f, 0.9f), Vec2(0.97f, 0.02f), Vec2(0.3f, 0.6f)}) {
+    const Ray ray = camera.generate_ray(film);
+    const float t = 7.0f;
+    const std::optional<FilmProjection> seen = camera.project(ray.origin + t * ray.direction);
+    ASSERT_TRUE(seen.has_value());
+    EXPECT_NEAR(seen->film.x, film.x, 1e-5f);
+    EXPECT_NEAR(seen->film.y, film.y, 1e-5f);
+    EXPECT_NEAR(seen->distance, t, 1e-4f);
+    expect_vec_near(seen->to_camera, -ray.direction, 1e-5f);
+    const Vec3 forward = glm::normalize(c.target - c.position);
+    EXPECT_NEAR(seen->cos_view, glm::dot(ray.direction, forward), 1e-6f);
+    // The camera ray starts at the near point: its tmin is the near plane.
+    expect_vec_near(seen->near_point, ray.origin + ray.tmin * ray.direction, 1e-5f);
+  }
+  // Behind the camera, off the film, nearer than znear, beyond zfar: not seen.
+  const Vec3 forward = glm::normalize(c.target - c.position);
+  EXPECT_FALSE(camera.project(c.position - 3.0f * forward).has_value());
+  EXPECT_FALSE(camera.project(c.position + forward + 5.0f * Vec3(0.0f, 1.0f, 0.0f)).has_value());
+  EXPECT_FALSE(camera.project(c.position + 0.4f * forward).has_value());
+  EXPECT_FALSE(camera.project(c.position + 41.0f * forward).has_value());
+  // The film's area on the plane at depth 1, per pixel.
+  const float tan_h = std::tan(radians(30.0f)), tan_v = std::tan(radians(20.0f));
+  EXPECT_NEAR(camera.pixel_area(40, 20), (2.0f * tan_h / 40.0f) * (2.0f * tan_v / 20.0f), 1e-9f);
+}
+
 TEST(CoreCamera, ValidateAcceptsOrdinaryCameras) {
   EXPECT_EQ(validation_result(Camera{}), "none");
   EXPECT_EQ(validation_result(oblique_camera()), "none");

@@ -125,6 +125,63 @@ TEST(IntegratorsLights, MeshLightFarAwayIsSampledInArea) {
   EXPECT_NEAR(sum / n, omega, 0.01 * omega);
 }
 
+/// Checks the light rays `light` emits: each carries the light's power (untextured emitters
+/// sampled in area and cosine), leaves a point of the emitter on its emitting side, and the
+/// directions are cosine-distributed (mean cosine 2/3); `front_fraction` of them leave the
+/// side `front(point)` says is the front. Grazing samples may be dropped, one in a thousand.
+template <typename FrontNormal>
+void expect_emission_samples(const LightSource& light, FrontNormal front, double front_fraction) {
+  const int n = 20000;
+  double cos_sum = 0.0;
+  int front_count = 0, missing = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec2 u_point((float(i) + 0.5f) / float(n), std::fmod(0.618034f * float(i), 1.0f));
+    const Vec2 u_direction(std::fmod(0.754878f * float(i), 1.0f),
+                           std::fmod(0.569840f * float(i), 1.0f));
+    const std::optional<LightLeSample> s = light.sample_le(u_point, u_direction);
+    if (!s) {
+      ++missing;  // grazing directions are dropped
+      continue;
+    }
+    EXPECT_NEAR(luminance(s->beta), luminance(light.power()), 1e-4 * luminance(light.power()));
+    const float c = glm::dot(s->direction, s->point.geometric_normal);
+    ASSERT_GT(c, 0.0f) << "a direction into the emitter";
+    EXPECT_NEAR(glm::length(s->direction), 1.0f, 1e-5f);
+    cos_sum += c;
+    if (glm::dot(s->point.geometric_normal, front(s->point.position)) > 0.0f) ++front_count;
+    // The ray leaves the surface: its origin is off it on the emitting side.
+    const Ray ray = spawn_ray(s->point, s->direction);
+    EXPECT_GE(glm::dot(ray.origin - s->point.position, s->point.geometric_normal), 0.0f);
+  }
+  EXPECT_LT(missing, n / 1000);
+  EXPECT_NEAR(cos_sum / (n - missing), 2.0 / 3.0, 0.01);
+  EXPECT_NEAR(double(front_count) / (n - missing), front_fraction, 0.02);
+}
+
+TEST(IntegratorsLights, EmissionSamplesCarryThePowerFromTheEmittingSide) {
+  const TriangleMesh mesh = tilted_quad();
+  const Vec3 front_normal = glm::normalize(
+      glm::cross(mesh.positions[2] - mesh.positions[0], mesh.positions[1] - mesh.positions[0]));
+  const auto quad_front = [&](const Vec3&) { return front_normal; };
+  expect_emission_samples(MeshLight(mesh, Rgb(2.0f), false), quad_front, 1.0);
+  expect_emission_samples(MeshLight(mesh, Rgb(2.0f), true), quad_front, 0.5);
+  const Sphere sphere{Vec3(1.0f, -2.0f, 0.5f), 0.75f, 0};
+  const auto outward = [&](const Vec3& p) { return p - sphere.center; };
+  expect_emission_samples(SphereLight(sphere, Rgb(0.5f, 1.0f, 2.0f), false), outward, 1.0);
+  expect_emission_samples(SphereLight(sphere, Rgb(0.5f, 1.0f, 2.0f), true), outward, 0.5);
+  // Points lie on the emitter.
+  const MeshLight light(mesh, Rgb(2.0f), false);
+  for (const Vec2 u : {Vec2(0.1f, 0.2f), Vec2(0.7f, 0.9f)}) {
+    const std::optional<LightLeSample> s = light.sample_le(u, Vec2(0.5f));
+    ASSERT_TRUE(s.has_value());
+    EXPECT_NEAR(glm::dot(s->point.position - mesh.positions[0], front_normal), 0.0f, 1e-5f);
+  }
+  // Lights that are not scene geometry emit no rays for light tracing.
+  Light point;
+  point.type = LightType::kPoint;
+  EXPECT_FALSE(PointLight(point).sample_le(Vec2(0.5f), Vec2(0.5f)).has_value());
+}
+
 TEST(IntegratorsLights, TriangleSolidAngle) {
   // An octant: a quarter of a hemisphere, whatever the vertices' lengths.
   EXPECT_NEAR(triangle_solid_angle({2, 0, 0}, {0, 1, 0}, {0, 0, 3}), kPi / 2.0f, 1e-5f);

@@ -169,6 +169,7 @@ void start_render(PreparedRender& r, RenderRecord& record) {
       .sampler_prototype = *r.sampler,
       .spp = r.settings.spp,
       .image_height = r.settings.height,
+      .image_width = r.settings.width,
       .adaptive_batch = r.settings.adaptive_batch,
       .adaptive_tolerance = r.settings.adaptive_tolerance,
       .progress = nullptr,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/sampling/frame.h"
 #include "integrators/sampling/warp.h"
 
 namespace prism {
@@ -39,6 +40,41 @@ std::optional<LightLiSample> toward_point(const Vec3& p, const Vec3& q, const Ve
   s.li = radiance;
   return s;
 }
+
+/// The light ray leaving `position` (rounding error `error`) of an emitter with front normal
+/// `front` and radiance `radiance` there, whose area density is 1 / area: a side (the front, or
+/// either for a two-sided emitter, by u.x) and a cosine-distributed direction on it; nothing
+/// for a grazing direction that rounding turned into the surface.
+std::optional<LightLeSample> leaving_point(const Vec3& position, const Vec3& error,
+                                           const Vec3& front, bool two_sided, float area,
+                                           const Rgb& radiance, Vec2 u) {
+  Vec3 normal = front;
+  float side_probability = 1.0f;
+  if (two_sided) {
+    side_probability = 0.5f;
+    if (u.x < 0.5f) {
+      u.x = 2.0f * u.x;
+    } else {
+      u.x = std::min(2.0f * u.x - 1.0f, 0x1.fffffep-1f);
+      normal = -front;
+    }
+  }
+  LightLeSample s;
+  s.point.position = position;
+  s.point.position_error = error;
+  s.point.geometric_normal = normal;
+  s.point.shading_normal = normal;
+  s.direction = glm::normalize(Frame::from_z(normal).to_world(square_to_cosine_hemisphere(u)));
+  if (!(glm::dot(s.direction, normal) > 0.0f)) return std::nullopt;  // grazing, rounded below
+  // radiance x cos / ((1 / area) x side probability x cos / pi)
+  s.beta = radiance * (kPi * area / side_probability);
+  return s;
+}
+
+/// A conservative bound on the rounding of a point rebuilt on a primitive whose coordinates
+/// are at most `magnitude`, including the ray tests' own rounding (Scene::surface_at()'s bound
+/// is tighter; this one only has to be large enough for spawn_ray()).
+Vec3 emitter_point_error(float magnitude) { return Vec3(rounding_gamma(32) * magnitude); }
 
 }  // namespace
 
@@ -119,20 +155,22 @@ float MeshLight::triangle_weights(const Vec3& p, float* weights, bool* spherical
   return total;
 }
 
+Rgb MeshLight::radiance_at(size_t i, Vec2 b) const {
+  if (!texture_) return radiance_;
+  // The uv of the point as Scene::surface_at() interpolates it (barycentrics without uvs).
+  Vec2 uv = b;
+  if (!mesh_.uvs.empty()) {
+    uv = (1.0f - b.x - b.y) * mesh_.uvs[3 * i] + b.x * mesh_.uvs[3 * i + 1] +
+         b.y * mesh_.uvs[3 * i + 2];
+  }
+  return radiance_ * glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
+}
+
 std::optional<LightLiSample> MeshLight::toward_triangle_point(const Vec3& p, size_t i,
                                                               const Vec3& q, Vec2 b, float pdf_area,
                                                               float pdf_solid_angle) const {
-  Rgb radiance = radiance_;
-  if (texture_) {
-    // The uv of the point as Scene::surface_at() interpolates it (barycentrics without uvs).
-    Vec2 uv = b;
-    if (!mesh_.uvs.empty()) {
-      uv = (1.0f - b.x - b.y) * mesh_.uvs[3 * i] + b.x * mesh_.uvs[3 * i + 1] +
-           b.y * mesh_.uvs[3 * i + 2];
-    }
-    radiance *= glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
-  }
-  std::optional<LightLiSample> s = toward_point(p, q, normals_[i], two_sided_, pdf_area, radiance);
+  std::optional<LightLiSample> s =
+      toward_point(p, q, normals_[i], two_sided_, pdf_area, radiance_at(i, b));
   if (s && pdf_solid_angle > 0.0f) s->pdf = pdf_solid_angle;
   return s;
 }
@@ -217,6 +255,20 @@ Rgb MeshLight::le(const SurfaceInteraction& light_hit, const Vec3& wo) const {
   return radiance_ * glm::max(texture_.textures->at(texture_.texture, light_hit), Rgb(0.0f));
 }
 
+std::optional<LightLeSample> MeshLight::sample_le(Vec2 u_point, Vec2 u_direction) const {
+  if (!(area_ > 0.0f) || triangles_.empty()) return std::nullopt;
+  float u_remapped = 0.0f;
+  const size_t i = triangles_.sample(u_point.x, nullptr, &u_remapped);
+  const Vec2 b = square_to_uniform_triangle({u_remapped, u_point.y});
+  const glm::uvec3 t = mesh_.triangles[i];
+  const Vec3 p0 = mesh_.positions[t.x], p1 = mesh_.positions[t.y], p2 = mesh_.positions[t.z];
+  // In double, as Scene::surface_at() rebuilds a hit point: one rounding off the plane.
+  const DVec3 d0(p0);
+  const Vec3 q(d0 + double(b.x) * (DVec3(p1) - d0) + double(b.y) * (DVec3(p2) - d0));
+  const Vec3 error = emitter_point_error(max_component(glm::abs(p0) + glm::abs(p1) + glm::abs(p2)));
+  return leaving_point(q, error, normals_[i], two_sided_, area_, radiance_at(i, b), u_direction);
+}
+
 Rgb MeshLight::power() const {
   const Rgb mean =
       texture_ ? glm::max(texture_.textures->average(texture_.texture), Rgb(0.0f)) : Rgb(1.0f);
@@ -231,15 +283,26 @@ std::optional<LightLiSample> SphereLight::sample_li(const Vec3& p, Vec2 u) const
   const float area = 4.0f * kPi * sphere_.radius * sphere_.radius;
   if (!(area > 0.0f)) return std::nullopt;
   const Vec3 n = square_to_uniform_sphere(u);
-  Rgb radiance = radiance_;
-  if (texture_) {
-    // The uv of the point as Scene::surface_at() parameterises spheres.
-    float phi = std::atan2(n.y, n.x);
-    if (phi < 0.0f) phi += 2.0f * kPi;
-    const Vec2 uv(phi / (2.0f * kPi), std::acos(std::clamp(n.z, -1.0f, 1.0f)) / kPi);
-    radiance *= glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
-  }
-  return toward_point(p, sphere_.center + sphere_.radius * n, n, two_sided_, 1.0f / area, radiance);
+  return toward_point(p, sphere_.center + sphere_.radius * n, n, two_sided_, 1.0f / area,
+                      radiance_at(n));
+}
+
+Rgb SphereLight::radiance_at(const Vec3& n) const {
+  if (!texture_) return radiance_;
+  // The uv of the point as Scene::surface_at() parameterises spheres.
+  float phi = std::atan2(n.y, n.x);
+  if (phi < 0.0f) phi += 2.0f * kPi;
+  const Vec2 uv(phi / (2.0f * kPi), std::acos(std::clamp(n.z, -1.0f, 1.0f)) / kPi);
+  return radiance_ * glm::max(texture_.textures->at_uv(texture_.texture, uv), Rgb(0.0f));
+}
+
+std::optional<LightLeSample> SphereLight::sample_le(Vec2 u_point, Vec2 u_direction) const {
+  const float area = 4.0f * kPi * sphere_.radius * sphere_.radius;
+  if (!(area > 0.0f)) return std::nullopt;
+  const Vec3 n = square_to_uniform_sphere(u_point);
+  const Vec3 q(DVec3(sphere_.center) + double(sphere_.radius) * DVec3(n));
+  const Vec3 error = emitter_point_error(max_component(glm::abs(sphere_.center)) + sphere_.radius);
+  return leaving_point(q, error, n, two_sided_, area, radiance_at(n), u_direction);
 }
 
 float SphereLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const {

@@ -58,6 +58,8 @@ class MeshLight final : public LightSource {
   std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
   float pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const override;
   Rgb le(const SurfaceInteraction& light_hit, const Vec3& wo) const override;
+  /// A triangle by area, a point uniformly on it.
+  std::optional<LightLeSample> sample_le(Vec2 u_point, Vec2 u_direction) const override;
   Rgb power() const override;
   float area() const { return area_; }
 
@@ -70,6 +72,8 @@ class MeshLight final : public LightSource {
   /// class comment), and in `spherical` whether it is sampled in solid angle (its weight is
   /// then its solid angle); returns the sum of the weights.
   float triangle_weights(const Vec3& p, float* weights, bool* spherical) const;
+  /// The radiance at barycentrics `b` of triangle `i` (the texture looked up unfiltered).
+  Rgb radiance_at(size_t i, Vec2 b) const;
 
   /// The sample toward point `q` (barycentrics `b`) of triangle `i`, with area density pdf_area
   /// there, or an explicit solid-angle density `pdf_solid_angle` when that is > 0.
@@ -98,9 +102,14 @@ class SphereLight final : public LightSource {
   std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
   float pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const override;
   Rgb le(const SurfaceInteraction& light_hit, const Vec3& wo) const override;
+  /// A point uniformly on the sphere.
+  std::optional<LightLeSample> sample_le(Vec2 u_point, Vec2 u_direction) const override;
   Rgb power() const override;
 
  private:
+  /// The radiance at the point of unit normal `n` (the texture looked up unfiltered).
+  Rgb radiance_at(const Vec3& n) const;
+
   Sphere sphere_;
   Rgb radiance_;
   EmissionTexture texture_;

@@ -29,6 +29,17 @@ struct LightLiSample {
   float distance = kInfinity;
 };
 
+/// A ray of light leaving an emitter, from LightSource::sample_le().
+struct LightLeSample {
+  /// The point on the emitter: position, its error bound and, as geometric and shading normal,
+  /// the normal of the side it emits from; ready for spawn_ray().
+  SurfaceInteraction point;
+  Vec3 direction{0.0f};  ///< unit, leaving the emitter on that side
+  /// Emitted radiance x cos / (area density x direction density): the ray's weight in an
+  /// estimate of the light sent out (its mean over samples is power() for untextured emitters).
+  Rgb beta{0.0f};
+};
+
 /// A light source in world space. Immutable after construction; thread-safe.
 class LightSource {
  public:
@@ -49,6 +60,13 @@ class LightSource {
   /// Radiance arriving along a ray that escapes the scene in direction `w`, were the light
   /// seen (kInfinite and kHiddenInfinite only; integrators ask only kInfinite lights).
   virtual Rgb le_escaped(const Vec3& w) const { return Rgb(0.0f); }
+  /// A point on the light and a direction leaving it, cosine-distributed about the normal of
+  /// the emitting side (a side chosen with u_direction.x for two-sided emitters), from u_point
+  /// and u_direction in [0,1)^2; for light tracing. kSurface lights only: the others return
+  /// nothing (light tracing leaves them out).
+  virtual std::optional<LightLeSample> sample_le(Vec2 u_point, Vec2 u_direction) const {
+    return std::nullopt;
+  }
   /// Total emitted power (or a proxy proportional to it), for choosing lights by power.
   virtual Rgb power() const = 0;
 

@@ -156,6 +156,7 @@ inline Image render_scene(const Scene& scene, const std::string& name, const Par
       .sampler_prototype = *sampler,
       .spp = r.spp,
       .image_height = r.height,
+      .image_width = r.width,
       .adaptive_batch = r.adaptive_batch,
       .adaptive_tolerance = r.adaptive_tolerance,
   };

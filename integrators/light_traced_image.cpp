@@ -1,0 +1,112 @@
+#include "integrators/light_traced_image.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+
+namespace prism {
+
+SparseSampleImage::SparseSampleImage(std::vector<Splat> splats, int width, int height)
+    : width_(width), row_begin_(size_t(height) + 1, 0) {
+  std::sort(splats.begin(), splats.end(), [](const Splat& a, const Splat& b) {
+    return a.pixel != b.pixel ? a.pixel < b.pixel : a.path < b.path;
+  });
+  for (size_t i = 0; i < splats.size();) {
+    const uint32_t pixel = splats[i].pixel;
+    DVec3 sum(0.0);
+    for (; i < splats.size() && splats[i].pixel == pixel; ++i) sum += DVec3(splats[i].radiance);
+    pixels_.push_back(pixel);
+    radiance_.push_back(Rgb(sum));
+  }
+  // row_begin_[y]: the first entry in row y or later.
+  size_t entry = 0;
+  for (int y = 0; y <= height; ++y) {
+    while (entry < pixels_.size() && pixels_[entry] < uint64_t(y) * uint64_t(width)) ++entry;
+    row_begin_[size_t(y)] = uint32_t(entry);
+  }
+}
+
+Rgb SparseSampleImage::at(glm::ivec2 pixel) const {
+  const uint32_t begin = row_begin_[size_t(pixel.y)], end = row_begin_[size_t(pixel.y) + 1];
+  if (begin == end) return Rgb(0.0f);
+  const uint32_t index = uint32_t(pixel.y) * uint32_t(width_) + uint32_t(pixel.x);
+  const auto first = pixels_.begin() + begin, last = pixels_.begin() + end;
+  const auto it = std::lower_bound(first, last, index);
+  return it != last && *it == index ? radiance_[size_t(it - pixels_.begin())] : Rgb(0.0f);
+}
+
+/// One sample index being traced (or traced): its chunks, handed out to the threads that ask.
+struct LightTracedImage::Tracing {
+  explicit Tracing(uint32_t chunk_count) : chunks(chunk_count), parts(chunk_count) {}
+  const uint32_t chunks;
+  std::atomic<uint32_t> next_chunk{0};
+  std::atomic<uint32_t> finished_chunks{0};
+  std::vector<std::vector<Splat>> parts;  ///< per chunk, written by the thread that traced it
+  std::mutex mutex;
+  std::condition_variable done;
+  bool ready = false;                              ///< under mutex
+  std::exception_ptr error;                        ///< under mutex
+  std::shared_ptr<const SparseSampleImage> image;  ///< set before ready
+};
+
+LightTracedImage::LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height)
+    : trace_(std::move(trace)), paths_(paths), width_(width), height_(height) {}
+
+LightTracedImage::~LightTracedImage() = default;
+
+std::shared_ptr<LightTracedImage::Tracing> LightTracedImage::tracing_of(uint32_t sample) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (const auto it = cache_.find(sample); it != cache_.end()) return it->second;
+  auto tracing = std::make_shared<Tracing>(std::max(1u, (paths_ + kChunkPaths - 1) / kChunkPaths));
+  cache_.emplace(sample, tracing);
+  order_.push_back(sample);
+  // A dropped entry stays alive while threads use it; asked for again, it is traced again.
+  while (order_.size() > kCachedSamples) {
+    cache_.erase(order_.front());
+    order_.pop_front();
+  }
+  return tracing;
+}
+
+std::shared_ptr<const SparseSampleImage> LightTracedImage::sample(uint32_t sample) const {
+  const std::shared_ptr<Tracing> tracing = tracing_of(sample);
+  Tracing& t = *tracing;
+  for (uint32_t chunk; (chunk = t.next_chunk.fetch_add(1)) < t.chunks;) {
+    try {
+      const uint32_t first = chunk * kChunkPaths;
+      trace_(sample, first, std::min(paths_, first + kChunkPaths), t.parts[chunk]);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(t.mutex);
+      if (!t.error) t.error = std::current_exception();
+    }
+    if (t.finished_chunks.fetch_add(1) + 1 != t.chunks) continue;
+    // The last chunk: gather every chunk's splats into the image.
+    std::shared_ptr<const SparseSampleImage> image;
+    try {
+      size_t count = 0;
+      for (const std::vector<Splat>& part : t.parts) count += part.size();
+      std::vector<Splat> splats;
+      splats.reserve(count);
+      for (std::vector<Splat>& part : t.parts) {
+        splats.insert(splats.end(), part.begin(), part.end());
+        std::vector<Splat>().swap(part);
+      }
+      image = std::make_shared<const SparseSampleImage>(std::move(splats), width_, height_);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(t.mutex);
+      if (!t.error) t.error = std::current_exception();
+    }
+    {
+      const std::lock_guard<std::mutex> lock(t.mutex);
+      t.image = std::move(image);
+      t.ready = true;
+    }
+    t.done.notify_all();
+  }
+  std::unique_lock<std::mutex> lock(t.mutex);
+  t.done.wait(lock, [&] { return t.ready; });
+  if (t.error) std::rethrow_exception(t.error);
+  return t.image;
+}
+
+}  // namespace prism

@@ -1,0 +1,78 @@
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "core/math.h"
+
+namespace prism {
+
+/// What one light path deposits on the image: radiance (already divided by the number of
+/// paths of its sample index) on one pixel of the full image.
+struct Splat {
+  uint32_t pixel = 0;  ///< y * width + x
+  uint32_t path = 0;   ///< the path's index among its sample index's paths
+  Rgb radiance{0.0f};
+};
+
+/// The light-traced radiance of one sample index, per pixel: a sparse image (most pixels
+/// receive nothing). Immutable.
+class SparseSampleImage {
+ public:
+  /// Sums `splats` (in any order) per pixel, in the order of their paths, in double: the same
+  /// bits whatever order the splats arrive in. Pixels must lie inside the width x height image.
+  SparseSampleImage(std::vector<Splat> splats, int width, int height);
+  /// The radiance deposited on `pixel` (inside the image): 0 for most pixels.
+  Rgb at(glm::ivec2 pixel) const;
+  /// Pixels that received radiance.
+  size_t size() const { return pixels_.size(); }
+
+ private:
+  int width_;
+  std::vector<uint32_t> row_begin_;  ///< per row y, the first entry of rows >= y; height + 1
+  std::vector<uint32_t> pixels_;     ///< ascending
+  std::vector<Rgb> radiance_;
+};
+
+/// The sparse images of a light tracer, per sample index, traced on demand: the threads that
+/// ask for a sample index not traced yet share its paths in chunks, then all receive the same
+/// image. Each image is a pure function of its sample index (the tracer must be), so an image
+/// dropped from the cache and traced again has the same bits; the most recent kCachedSamples
+/// are kept. Thread-safe.
+class LightTracedImage {
+ public:
+  /// Traces the paths [first, last) of sample index `sample` and appends their splats.
+  using TraceFunction =
+      std::function<void(uint32_t sample, uint32_t first, uint32_t last, std::vector<Splat>&)>;
+
+  /// Sample indices traced with `paths` paths each, over a width x height image.
+  LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height);
+  ~LightTracedImage();
+
+  /// The image of sample index `sample`; traces it (with whichever other threads ask for it
+  /// meanwhile) if it is not cached. Rethrows what the tracing threw.
+  std::shared_ptr<const SparseSampleImage> sample(uint32_t sample) const;
+  uint32_t paths_per_sample() const { return paths_; }
+
+  static constexpr uint32_t kChunkPaths = 2048;
+  static constexpr size_t kCachedSamples = 256;
+
+ private:
+  struct Tracing;
+  std::shared_ptr<Tracing> tracing_of(uint32_t sample) const;
+
+  TraceFunction trace_;
+  uint32_t paths_;
+  int width_, height_;
+  mutable std::mutex mutex_;
+  mutable std::map<uint32_t, std::shared_ptr<Tracing>> cache_;
+  mutable std::deque<uint32_t> order_;  ///< cached sample indices, oldest first
+};
+
+}  // namespace prism
