@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/sampling/frame.h"
 #include "integrators/sampling/warp.h"
 
 namespace prism {
@@ -42,6 +43,69 @@ CausticTracer::CausticTracer(const RenderContext& context, const ShadingContext&
   }
   selection_ = DiscreteDistribution(powers);
   sampler_prototype_->set_sample_count(std::max(1, context.spp));
+  // Spheres around the specular geometry, a little enlarged against rounding.
+  const SceneGeometry& geometry = context.scene.geometry;
+  const auto specular = [&](uint32_t material) {
+    return material < shading.bsdfs.size() && shading.bsdfs[material] &&
+           shading.bsdfs[material]->is_delta();
+  };
+  Bounds3 all;
+  for (const TriangleMesh& mesh : geometry.meshes) {
+    if (!specular(mesh.material_id) || mesh.triangles.empty()) continue;
+    const Bounds3 b = mesh.bounds();
+    targets_.push_back({0.5f * (b.lower + b.upper), 0.5f * glm::length(b.upper - b.lower)});
+    all.extend(b);
+  }
+  for (const Sphere& sphere : geometry.spheres) {
+    if (!specular(sphere.material_id)) continue;
+    targets_.push_back({sphere.center, sphere.radius});
+    all.extend(sphere.bounds());
+  }
+  if (targets_.size() > kMaxTargets) {
+    targets_ = {{0.5f * (all.lower + all.upper), 0.5f * glm::length(all.upper - all.lower)}};
+  }
+  for (Target& t : targets_) {
+    t.radius = t.radius * 1.001f + 1e-4f * max_component(glm::abs(t.center));
+  }
+}
+
+std::optional<std::pair<Vec3, float>> CausticTracer::sample_toward_targets(const Vec3& p,
+                                                                           float u_choice,
+                                                                           Vec2 u) const {
+  float cos_max[kMaxTargets];
+  float solid_angle[kMaxTargets];
+  Vec3 axis[kMaxTargets];
+  float total = 0.0f;
+  const size_t n = targets_.size();
+  for (size_t k = 0; k < n; ++k) {
+    const Vec3 v = targets_[k].center - p;
+    const float d2 = glm::dot(v, v);
+    const float r2 = targets_[k].radius * targets_[k].radius;
+    if (d2 <= r2 || !(d2 > 0.0f)) {
+      cos_max[k] = -1.0f;  // inside: every direction
+      axis[k] = Vec3(0.0f, 0.0f, 1.0f);
+    } else {
+      cos_max[k] = std::sqrt(std::max(0.0f, 1.0f - r2 / d2));
+      axis[k] = v / std::sqrt(d2);
+    }
+    solid_angle[k] = 2.0f * kPi * (1.0f - cos_max[k]);
+    total += solid_angle[k];
+  }
+  if (!(total > 0.0f)) return std::nullopt;
+  size_t k = 0;
+  for (float below = 0.0f; k + 1 < n && below + solid_angle[k] <= u_choice * total; ++k) {
+    below += solid_angle[k];
+  }
+  if (!(solid_angle[k] > 0.0f)) return std::nullopt;
+  const float cos_theta = 1.0f - u.x * (1.0f - cos_max[k]);
+  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+  const float phi = 2.0f * kPi * u.y;
+  const Vec3 w = glm::normalize(Frame::from_z(axis[k]).to_world(
+      Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta)));
+  int containing = 0;
+  for (size_t j = 0; j < n; ++j) containing += glm::dot(w, axis[j]) >= cos_max[j] ? 1 : 0;
+  if (containing == 0) return std::nullopt;  // rounding at a cone's rim
+  return std::make_pair(w, float(containing) / total);
 }
 
 bool CausticTracer::applies(const RenderContext& context, const ShadingContext& shading,
@@ -55,8 +119,8 @@ bool CausticTracer::applies(const RenderContext& context, const ShadingContext& 
   return specular && light;
 }
 
-void CausticTracer::trace(uint32_t sample, uint32_t first, uint32_t last,
-                          std::vector<Splat>& out) const {
+void CausticTracer::trace(uint32_t sample, uint32_t first, uint32_t last, std::vector<Splat>& out,
+                          std::vector<CausticVertex>& vertices) const {
   if (selection_.empty() || !(selection_.total() > 0.0)) return;
   const std::unique_ptr<Sampler> sampler = sampler_prototype_->clone();
   for (uint32_t path = first; path < last; ++path) {
@@ -64,12 +128,21 @@ void CausticTracer::trace(uint32_t sample, uint32_t first, uint32_t last,
     const float u_light = lights_.size() > 1 ? sampler->get_1d() : 0.0f;
     const Vec2 u_point = sampler->get_2d();
     const Vec2 u_direction = sampler->get_2d();
+    const Vec2 u_side_and_target = sampler->get_2d();
     float pmf = 0.0f;
     const LightSource& light = *lights_[selection_.sample(u_light, &pmf)];
-    const std::optional<LightLeSample> le = light.sample_le(u_point, u_direction);
+    // The emitter's point and side; its cosine-distributed direction is replaced by one toward
+    // the targets: beta = Le cos / (pdf_area pdf_direction), and sample_le()'s beta is
+    // Le pi / pdf_area.
+    const std::optional<LightLeSample> le =
+        light.sample_le(u_point, Vec2(u_side_and_target.x, 0.5f));
     if (!le || !(pmf > 0.0f)) continue;
-    Rgb beta = le->beta / pmf;
-    Ray ray = spawn_ray(le->point, le->direction);
+    const auto toward = sample_toward_targets(le->point.position, u_side_and_target.y, u_direction);
+    if (!toward) continue;
+    const float cos_light = glm::dot(toward->first, le->point.geometric_normal);
+    if (!(cos_light > 0.0f)) continue;
+    Rgb beta = le->beta * (cos_light / (kPi * toward->second * pmf));
+    Ray ray = spawn_ray(le->point, toward->first);
     for (int bounces = 0;; ++bounces) {
       const std::optional<Hit> hit = context_.accel.intersect(ray);
       if (!hit) break;
@@ -79,7 +152,13 @@ void CausticTracer::trace(uint32_t sample, uint32_t first, uint32_t last,
       if (bsdf.is_black()) break;
       if (!bsdf.is_delta()) {
         // Light that reaches a surface directly is the path tracer's (light sampling).
-        if (bounces > 0) connect(si, bsdf, ray, beta, path, out);
+        if (bounces > 0) {
+          connect(si, bsdf, ray, beta, path, out);
+          // Camera paths reach it with one bounce more: within max_depth?
+          if (bounces < max_specular_bounces_) {
+            vertices.push_back(CausticVertex{si, -glm::normalize(ray.direction), beta, path});
+          }
+        }
         break;
       }
       if (bounces == max_specular_bounces_) break;

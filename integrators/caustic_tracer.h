@@ -17,6 +17,16 @@ namespace prism {
 /// camera -> first hit whose sampled lobe is not delta -> only purely specular surfaces ->
 /// an emitter that covers() (emissive meshes and spheres) -> at most max_depth bounces in all.
 ///
+/// Only paths that meet a specular surface first count, so light paths leave their emitter
+/// toward bounding spheres of the specular meshes and spheres (uniform in the cones they
+/// subtend, kMaxTargets of them at most, else one around them all) rather than in all
+/// directions: the same estimate without the paths that would end on their first hit.
+///
+/// Its caustic vertices (where those paths land) also serve camera paths: the path tracer
+/// connects its first hit to one of them (PathIntegrator) and leaves out the paths that
+/// connection carries: camera -> first hit -> a surface at least the connection radius away
+/// (sampled lobes not delta at both) -> only purely specular surfaces -> a covered emitter.
+///
 /// The estimate of sample index s for a pixel is (1 / M) x the sum of the deposits of the M
 /// paths of index s on it; each path's sample values are the sampler's for "pixel"
 /// (-1 - path % 65536, -1 - path / 65536) at index s, so the estimate is a pure function of s
@@ -35,16 +45,32 @@ class CausticTracer {
   /// Whether paths ending on `light` are this tracer's (the lights it traces from).
   static bool covers(const LightSource& light) { return light.kind() == LightKind::kSurface; }
 
+  static constexpr size_t kMaxTargets = 32;
+
   /// Paths per sample index.
   uint32_t paths() const { return paths_; }
-  /// Traces paths [first, last) of sample index `sample` and appends their deposits.
-  void trace(uint32_t sample, uint32_t first, uint32_t last, std::vector<Splat>& out) const;
+  /// Traces paths [first, last) of sample index `sample` and appends their deposits on the
+  /// camera and their caustic vertices (those whose light a camera path could still reach with
+  /// one more bounce within max_depth).
+  void trace(uint32_t sample, uint32_t first, uint32_t last, std::vector<Splat>& out,
+             std::vector<CausticVertex>& vertices) const;
 
  private:
   /// The deposit on the camera of the light path arriving at `si` (not purely specular) along
   /// `ray` with throughput `beta`, if the camera sees si.
   void connect(const SurfaceInteraction& si, const Bsdf& bsdf, const Ray& ray, const Rgb& beta,
                uint32_t path, std::vector<Splat>& out) const;
+
+  /// A sphere around specular geometry: light paths leave the lights toward these only.
+  struct Target {
+    Vec3 center{0.0f};
+    float radius = 0.0f;
+  };
+  /// A direction from `p` toward the targets, uniform in the cone of one of them (chosen in
+  /// proportion to its solid angle, from u_choice; every direction if p is inside), and its
+  /// density: (cones containing it) / (their solid angles' sum). Nothing without targets.
+  std::optional<std::pair<Vec3, float>> sample_toward_targets(const Vec3& p, float u_choice,
+                                                              Vec2 u) const;
 
   const RenderContext& context_;
   const ShadingContext& shading_;
@@ -54,6 +80,7 @@ class CausticTracer {
   uint32_t paths_;
   float pixel_area_;
   std::vector<const LightSource*> lights_;  ///< the lights covered, chosen by power
+  std::vector<Target> targets_;             ///< around every purely specular mesh and sphere
   DiscreteDistribution selection_;
   std::unique_ptr<Sampler> sampler_prototype_;
 };

@@ -38,7 +38,7 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
   // The light-traced images of this range's sample indices, fetched when first needed (each
   // pixel of the tile runs through the range).
   const LightTracedImage* light_traced = estimator_->light_traced_image();
-  std::vector<std::shared_ptr<const SparseSampleImage>> light_images;
+  std::vector<std::shared_ptr<const LightTracedSample>> light_images;
   if (light_traced && range.last > range.first) light_images.resize(range.last - range.first);
   for (int y = tile.begin.y; y < tile.end.y; ++y) {
     for (int x = tile.begin.x; x < tile.end.x; ++x) {
@@ -53,11 +53,13 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
         const Vec2 lens = sampler->get_2d();
         const Ray ray = camera.generate_ray(film_position, lens);
         AovSample aovs;
-        Rgb radiance = estimator_->li(ray, *sampler, aovs);
+        Rgb radiance;
         if (light_traced) {
-          std::shared_ptr<const SparseSampleImage>& image = light_images[s - range.first];
-          if (!image) image = light_traced->sample(s);
-          radiance += image->at(pixel);
+          std::shared_ptr<const LightTracedSample>& light = light_images[s - range.first];
+          if (!light) light = light_traced->sample(s);
+          radiance = estimator_->li_with_light(ray, *sampler, aovs, *light) + light->at(pixel);
+        } else {
+          radiance = estimator_->li(ray, *sampler, aovs);
         }
         film.add_sample(pixel, radiance, aovs);
         if (batch <= 0) continue;

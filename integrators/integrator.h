@@ -16,6 +16,7 @@
 namespace prism {
 
 class LightTracedImage;
+class LightTracedSample;
 
 /// Everything an integrator reads while rendering, besides its own parameters. All references
 /// outlive the render.
@@ -80,6 +81,13 @@ class PixelEstimator {
   /// Radiance traced from the lights for this render, added to every camera sample of the
   /// same pixel and sample index (light paths li() leaves to it); null: none.
   virtual const LightTracedImage* light_traced_image() const { return nullptr; }
+  /// li() for a camera sample of a render with a light_traced_image(): `light` is that image's
+  /// sample of the camera sample's index, whose caustic vertices li() may connect to. The
+  /// default ignores it.
+  virtual Rgb li_with_light(const Ray& ray, Sampler& sampler, AovSample& aovs,
+                            const LightTracedSample& light) const {
+    return li(ray, sampler, aovs);
+  }
 };
 
 /// Integrators that estimate radiance independently per camera ray: the tile loop, per-tile

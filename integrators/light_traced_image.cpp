@@ -6,8 +6,14 @@
 
 namespace prism {
 
-SparseSampleImage::SparseSampleImage(std::vector<Splat> splats, int width, int height)
-    : width_(width), row_begin_(size_t(height) + 1, 0) {
+LightTracedSample::LightTracedSample(std::vector<Splat> splats, std::vector<CausticVertex> vertices,
+                                     int width, int height, uint32_t paths)
+    : width_(width),
+      paths_(paths),
+      vertices_(std::move(vertices)),
+      row_begin_(size_t(height) + 1, 0) {
+  std::sort(vertices_.begin(), vertices_.end(),
+            [](const CausticVertex& a, const CausticVertex& b) { return a.path < b.path; });
   std::sort(splats.begin(), splats.end(), [](const Splat& a, const Splat& b) {
     return a.pixel != b.pixel ? a.pixel < b.pixel : a.path < b.path;
   });
@@ -26,7 +32,7 @@ SparseSampleImage::SparseSampleImage(std::vector<Splat> splats, int width, int h
   }
 }
 
-Rgb SparseSampleImage::at(glm::ivec2 pixel) const {
+Rgb LightTracedSample::at(glm::ivec2 pixel) const {
   const uint32_t begin = row_begin_[size_t(pixel.y)], end = row_begin_[size_t(pixel.y) + 1];
   if (begin == end) return Rgb(0.0f);
   const uint32_t index = uint32_t(pixel.y) * uint32_t(width_) + uint32_t(pixel.x);
@@ -37,16 +43,18 @@ Rgb SparseSampleImage::at(glm::ivec2 pixel) const {
 
 /// One sample index being traced (or traced): its chunks, handed out to the threads that ask.
 struct LightTracedImage::Tracing {
-  explicit Tracing(uint32_t chunk_count) : chunks(chunk_count), parts(chunk_count) {}
+  explicit Tracing(uint32_t chunk_count)
+      : chunks(chunk_count), parts(chunk_count), vertex_parts(chunk_count) {}
   const uint32_t chunks;
   std::atomic<uint32_t> next_chunk{0};
   std::atomic<uint32_t> finished_chunks{0};
   std::vector<std::vector<Splat>> parts;  ///< per chunk, written by the thread that traced it
+  std::vector<std::vector<CausticVertex>> vertex_parts;  ///< likewise
   std::mutex mutex;
   std::condition_variable done;
   bool ready = false;                              ///< under mutex
   std::exception_ptr error;                        ///< under mutex
-  std::shared_ptr<const SparseSampleImage> image;  ///< set before ready
+  std::shared_ptr<const LightTracedSample> image;  ///< set before ready
 };
 
 LightTracedImage::LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height)
@@ -68,20 +76,21 @@ std::shared_ptr<LightTracedImage::Tracing> LightTracedImage::tracing_of(uint32_t
   return tracing;
 }
 
-std::shared_ptr<const SparseSampleImage> LightTracedImage::sample(uint32_t sample) const {
+std::shared_ptr<const LightTracedSample> LightTracedImage::sample(uint32_t sample) const {
   const std::shared_ptr<Tracing> tracing = tracing_of(sample);
   Tracing& t = *tracing;
   for (uint32_t chunk; (chunk = t.next_chunk.fetch_add(1)) < t.chunks;) {
     try {
       const uint32_t first = chunk * kChunkPaths;
-      trace_(sample, first, std::min(paths_, first + kChunkPaths), t.parts[chunk]);
+      trace_(sample, first, std::min(paths_, first + kChunkPaths), t.parts[chunk],
+             t.vertex_parts[chunk]);
     } catch (...) {
       const std::lock_guard<std::mutex> lock(t.mutex);
       if (!t.error) t.error = std::current_exception();
     }
     if (t.finished_chunks.fetch_add(1) + 1 != t.chunks) continue;
     // The last chunk: gather every chunk's splats into the image.
-    std::shared_ptr<const SparseSampleImage> image;
+    std::shared_ptr<const LightTracedSample> image;
     try {
       size_t count = 0;
       for (const std::vector<Splat>& part : t.parts) count += part.size();
@@ -91,7 +100,13 @@ std::shared_ptr<const SparseSampleImage> LightTracedImage::sample(uint32_t sampl
         splats.insert(splats.end(), part.begin(), part.end());
         std::vector<Splat>().swap(part);
       }
-      image = std::make_shared<const SparseSampleImage>(std::move(splats), width_, height_);
+      std::vector<CausticVertex> vertices;
+      for (std::vector<CausticVertex>& part : t.vertex_parts) {
+        vertices.insert(vertices.end(), part.begin(), part.end());
+        std::vector<CausticVertex>().swap(part);
+      }
+      image = std::make_shared<const LightTracedSample>(std::move(splats), std::move(vertices),
+                                                        width_, height_, paths_);
     } catch (...) {
       const std::lock_guard<std::mutex> lock(t.mutex);
       if (!t.error) t.error = std::current_exception();

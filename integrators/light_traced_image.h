@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/scene.h"
 
 namespace prism {
 
@@ -21,35 +23,64 @@ struct Splat {
   Rgb radiance{0.0f};
 };
 
-/// The light-traced radiance of one sample index, per pixel: a sparse image (most pixels
-/// receive nothing). Immutable.
-class SparseSampleImage {
+/// Where a light path's caustic lands: the first surface after its specular bounces whose BSDF
+/// is not purely specular, and the light arriving there.
+struct CausticVertex {
+  SurfaceInteraction si;
+  Vec3 to_light{0.0f};  ///< unit, toward the path's previous vertex
+  Rgb beta{0.0f};       ///< the path's throughput arriving at si (one path's, not divided)
+  uint32_t path = 0;    ///< the path's index among its sample index's paths
+};
+
+/// What the light paths of one sample index left: the radiance they deposited per pixel (a
+/// sparse image: most pixels receive nothing) and the caustic vertices camera paths connect
+/// to. Immutable.
+class LightTracedSample {
  public:
   /// Sums `splats` (in any order) per pixel, in the order of their paths, in double: the same
   /// bits whatever order the splats arrive in. Pixels must lie inside the width x height image.
-  SparseSampleImage(std::vector<Splat> splats, int width, int height);
+  /// `vertices` (any order) are kept in path order; `paths` is how many paths were traced.
+  LightTracedSample(std::vector<Splat> splats, std::vector<CausticVertex> vertices, int width,
+                    int height, uint32_t paths);
   /// The radiance deposited on `pixel` (inside the image): 0 for most pixels.
   Rgb at(glm::ivec2 pixel) const;
   /// Pixels that received radiance.
   size_t size() const { return pixels_.size(); }
+  /// The caustic vertices, in path order, and the number of paths they came from.
+  const std::vector<CausticVertex>& vertices() const { return vertices_; }
+  uint32_t paths() const { return paths_; }
+  /// One caustic vertex chosen uniformly with u in [0, 1) (null when there are none), its
+  /// memory starting to load; what it brings, times vertices().size() / paths(), estimates
+  /// what all the paths bring.
+  const CausticVertex* choose_vertex(float u) const {
+    if (vertices_.empty()) return nullptr;
+    const CausticVertex* v =
+        &vertices_[std::min(vertices_.size() - 1, size_t(u * float(vertices_.size())))];
+    __builtin_prefetch(v);
+    __builtin_prefetch(reinterpret_cast<const char*>(v) + 64);
+    return v;
+  }
 
  private:
   int width_;
+  uint32_t paths_;
+  std::vector<CausticVertex> vertices_;
   std::vector<uint32_t> row_begin_;  ///< per row y, the first entry of rows >= y; height + 1
   std::vector<uint32_t> pixels_;     ///< ascending
   std::vector<Rgb> radiance_;
 };
 
-/// The sparse images of a light tracer, per sample index, traced on demand: the threads that
-/// ask for a sample index not traced yet share its paths in chunks, then all receive the same
+/// What a light tracer leaves per sample index (LightTracedSample), traced on demand: the threads
+/// that ask for a sample index not traced yet share its paths in chunks, then all receive the same
 /// image. Each image is a pure function of its sample index (the tracer must be), so an image
 /// dropped from the cache and traced again has the same bits; the most recent kCachedSamples
 /// are kept. Thread-safe.
 class LightTracedImage {
  public:
-  /// Traces the paths [first, last) of sample index `sample` and appends their splats.
-  using TraceFunction =
-      std::function<void(uint32_t sample, uint32_t first, uint32_t last, std::vector<Splat>&)>;
+  /// Traces the paths [first, last) of sample index `sample` and appends their splats and
+  /// caustic vertices.
+  using TraceFunction = std::function<void(uint32_t sample, uint32_t first, uint32_t last,
+                                           std::vector<Splat>&, std::vector<CausticVertex>&)>;
 
   /// Sample indices traced with `paths` paths each, over a width x height image.
   LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height);
@@ -57,10 +88,10 @@ class LightTracedImage {
 
   /// The image of sample index `sample`; traces it (with whichever other threads ask for it
   /// meanwhile) if it is not cached. Rethrows what the tracing threw.
-  std::shared_ptr<const SparseSampleImage> sample(uint32_t sample) const;
+  std::shared_ptr<const LightTracedSample> sample(uint32_t sample) const;
   uint32_t paths_per_sample() const { return paths_; }
 
-  static constexpr uint32_t kChunkPaths = 2048;
+  static constexpr uint32_t kChunkPaths = 256;
   static constexpr size_t kCachedSamples = 256;
 
  private:

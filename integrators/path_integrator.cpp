@@ -19,7 +19,8 @@ PathIntegrator::Settings::Settings(const ParamSet& params)
       rr_depth(int(params.get_int("path.rr_depth", rr_probability > 0.0f ? 1 : 3, 0, 1 << 20))),
       rr_sqrt(params.get_bool("path.rr_sqrt", true)),
       caustics(params.get_bool("path.caustics", true)),
-      caustic_paths(params.get_float("path.caustic_paths", kDefaultCausticPaths, 0x1p-20, 64.0)) {}
+      caustic_paths(params.get_float("path.caustic_paths", kDefaultCausticPaths, 0x1p-20, 64.0)),
+      caustic_radius(params.get_float("path.caustic_radius", kDefaultCausticRadius, 0.0, 1.0)) {}
 
 namespace {
 
@@ -38,26 +39,48 @@ class PathEstimator final : public PixelEstimator {
                                                   settings.caustic_paths, width, height);
       light_traced_ = std::make_unique<LightTracedImage>(
           [tracer = caustics_.get()](uint32_t sample, uint32_t first, uint32_t last,
-                                     std::vector<Splat>& out) {
-            tracer->trace(sample, first, last, out);
+                                     std::vector<Splat>& out,
+                                     std::vector<CausticVertex>& vertices) {
+            tracer->trace(sample, first, last, out, vertices);
           },
           caustics_->paths(), width, height);
+      const Bounds3 bounds = context.scene.geometry.bounds();
+      const float diagonal = glm::length(bounds.upper - bounds.lower);
+      connection_radius_ =
+          std::isfinite(diagonal) ? float(settings.caustic_radius) * diagonal : 0.0f;
     }
   }
 
-  Rgb li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const override;
+  Rgb li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const override {
+    return li_paths(camera_ray, sampler, aovs, nullptr);
+  }
+  Rgb li_with_light(const Ray& camera_ray, Sampler& sampler, AovSample& aovs,
+                    const LightTracedSample& light) const override {
+    return li_paths(camera_ray, sampler, aovs, &light);
+  }
   const LightTracedImage* light_traced_image() const override { return light_traced_.get(); }
 
  private:
   /// Light arriving at `sp` from one light chosen by power, MIS-weighted against BSDF
   /// sampling; averaged over light_samples samples.
   Rgb sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const;
+  /// The path tracing estimate along `camera_ray`; with `traced` (the light-traced sample of this
+  /// camera sample's index), the caustics li() leaves to the light tracer are left out and the
+  /// first hit connects to one of its caustic vertices.
+  Rgb li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& aovs,
+               const LightTracedSample* traced) const;
+  /// Light of the caustic vertex `v` of `light` (LightTracedSample::choose_vertex()) reflected
+  /// at the camera's first hit `sp` toward the camera, as an estimate of what all of its paths
+  /// bring there from vertices at least connection_radius_ away.
+  Rgb connect_caustic_vertex(const ShadingPoint& sp, const LightTracedSample& light,
+                             const CausticVertex& v) const;
 
   const RenderContext& context_;
   const PathIntegrator::Settings settings_;
   const ShadingContext shading_;
   std::unique_ptr<CausticTracer> caustics_;  ///< null when light tracing does not apply
   std::unique_ptr<LightTracedImage> light_traced_;
+  float connection_radius_ = 0.0f;  ///< world units
 };
 
 Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const {
@@ -84,7 +107,41 @@ Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) c
   return sum / float(n);
 }
 
-Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) const {
+Rgb PathEstimator::connect_caustic_vertex(const ShadingPoint& sp, const LightTracedSample& light,
+                                          const CausticVertex& v) const {
+  const Vec3 d = v.si.position - sp.si.position;
+  const float distance = glm::length(d);
+  // Nearer pairs are the camera paths' (li_paths()).
+  if (!(distance >= connection_radius_) || !(distance > 0.0f)) return Rgb(0.0f);
+  const Vec3 w = d / distance;
+  const Rgb f_here = sp.eval_cos(w);  // f(to camera, w) |w . ns|
+  if (max_component(f_here) <= 0.0f) return Rgb(0.0f);
+  // The vertex's surface as seen from here: wo toward here, wi toward its light.
+  BsdfStorage storage;
+  const Bsdf& bsdf = shading_.bsdf_at(v.si, storage);
+  Ray arriving;
+  arriving.origin = sp.si.position;
+  arriving.direction = w;
+  const ShadingPoint there(v.si, arriving, bsdf);
+  const Rgb f_there = there.eval_cos(v.to_light);  // f(-w, to light) |to_light . ns|
+  if (max_component(f_there) <= 0.0f) return Rgb(0.0f);
+  const float cos_light_geometric = std::abs(glm::dot(v.to_light, v.si.geometric_normal));
+  if (!(cos_light_geometric > 0.0f)) return Rgb(0.0f);
+  // Importance flows into the vertex: |w . ng| / |to_light . ng| replaces the shading cosine
+  // of its BSDF (the adjoint's shading-normal correction, as CausticTracer).
+  const float geometry =
+      std::abs(glm::dot(w, v.si.geometric_normal)) / (cos_light_geometric * distance * distance);
+  const Vec3 target =
+      offset_ray_origin(v.si.position, v.si.position_error, v.si.geometric_normal, -w);
+  if (context_.accel.occluded(spawn_ray_to(sp.si, target))) return Rgb(0.0f);
+  // One of the n vertices of light.paths() paths, chosen uniformly: x n / paths.
+  const float pick = float(light.vertices().size()) / float(light.paths());
+  const Rgb contribution = v.beta * f_here * f_there * (geometry * pick);
+  return is_finite(contribution) ? contribution : Rgb(0.0f);
+}
+
+Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& aovs,
+                            const LightTracedSample* traced) const {
   const RenderContext& context = context_;
   const ShadingContext& shading = shading_;
   const int light_samples = settings_.light_transport.light_samples;
@@ -103,10 +160,21 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
   bool specular = true;    // the camera "bounce" counts as specular: emission seen in full
   float bsdf_pdf = 0.0f;
   Vec3 previous_position = ray.origin;
-  // How far the path follows what the light tracer carries (caustics_): kNone, or from a
-  // first hit whose sampled lobe is not delta (kFromFirstHit) through one or more purely
-  // specular surfaces only (kCaustic): emitters it covers, found then, are its.
-  enum class Caustic { kNone, kFromFirstHit, kCaustic } caustic = Caustic::kNone;
+  // How far the path follows what the light tracer carries (with `traced`): kNone; from a first
+  // hit whose sampled lobe is not delta (kFromFirstHit) through one or more purely specular
+  // surfaces only (kCaustic: the caustic seen directly); or from such a first hit to a second
+  // surface at least connection_radius_ away whose sampled lobe is not delta
+  // (kFromSecondHit), then through purely specular surfaces only (kConnectedCaustic: the
+  // connection to a caustic vertex). Emitters it covers, found in kCaustic or
+  // kConnectedCaustic, are its.
+  enum class Caustic {
+    kNone,
+    kFromFirstHit,
+    kCaustic,
+    kFromSecondHit,
+    kConnectedCaustic
+  } caustic = Caustic::kNone;
+  Vec3 first_hit{0.0f};
   for (int bounces = 0;; ++bounces) {
     const std::optional<Hit> hit = context.accel.intersect(ray);
     if (!hit) {
@@ -132,15 +200,16 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
       aovs.normal = si.shading_normal;
       aovs.depth = hit->t * glm::length(ray.direction);
     }
-    if (const LightSource* light = shading.lights.surface_light(si);
-        light && !(caustic == Caustic::kCaustic && CausticTracer::covers(*light))) {
-      const Rgb le = light->le(si, -glm::normalize(ray.direction));
+    if (const LightSource* emitter = shading.lights.surface_light(si);
+        emitter && !((caustic == Caustic::kCaustic || caustic == Caustic::kConnectedCaustic) &&
+                     CausticTracer::covers(*emitter))) {
+      const Rgb le = emitter->le(si, -glm::normalize(ray.direction));
       if (max_component(le) > 0.0f) {
         if (specular) {
           add(beta * le, bounces);
         } else if (settings_.mis) {
-          const float light_pdf = shading.lights.pmf(shading.lights.index_of(light)) *
-                                  light->pdf_li(previous_position, si);
+          const float light_pdf = shading.lights.pmf(shading.lights.index_of(emitter)) *
+                                  emitter->pdf_li(previous_position, si);
           add(beta * le * power_heuristic(1.0f, bsdf_pdf, nee_samples, light_pdf), bounces);
         }
       }
@@ -150,6 +219,9 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
     const ShadingPoint sp(si, ray, bsdf);
     if (!bsdf.is_delta() && (accumulate || bounces + 1 == max_depth)) {
       Rgb direct;
+      // The caustic vertex the first hit connects to, chosen first so that it loads meanwhile.
+      const CausticVertex* vertex =
+          traced && bounces == 0 ? traced->choose_vertex(sampler.get_1d()) : nullptr;
       if (settings_.mis) {
         direct = sample_lights_mis(sp, sampler);
       } else if (settings_.light_transport.hemisphere) {
@@ -158,6 +230,7 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
         direct = estimate_direct_lights(sp, sampler, context, shading, light_samples);
       }
       add(beta * direct, bounces + 1);
+      if (vertex) add(connect_caustic_vertex(sp, *traced, *vertex), 2);
     }
 
     const float u_lobe = sampler.get_1d();
@@ -166,11 +239,18 @@ Rgb PathEstimator::li(const Ray& camera_ray, Sampler& sampler, AovSample& aovs) 
     beta *= bs->f * (std::abs(glm::dot(bs->wi, si.shading_normal)) / bs->pdf);
     if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
     specular = bs->is_delta();
-    if (caustics_) {
+    if (traced) {
       if (bounces == 0) {
         caustic = specular ? Caustic::kNone : Caustic::kFromFirstHit;
-      } else if (caustic != Caustic::kNone) {
-        caustic = bsdf.is_delta() ? Caustic::kCaustic : Caustic::kNone;
+        first_hit = si.position;
+      } else if (bsdf.is_delta()) {
+        if (caustic == Caustic::kFromFirstHit) caustic = Caustic::kCaustic;
+        if (caustic == Caustic::kFromSecondHit) caustic = Caustic::kConnectedCaustic;
+      } else if (caustic == Caustic::kFromFirstHit && bounces == 1 && !specular &&
+                 glm::length(si.position - first_hit) >= connection_radius_) {
+        caustic = Caustic::kFromSecondHit;
+      } else {
+        caustic = Caustic::kNone;
       }
     }
     bsdf_pdf = bs->pdf;

@@ -27,6 +27,12 @@ namespace prism {
 ///   specular material, max_depth >= 2.
 /// - caustic_paths (default kDefaultCausticPaths, in (0, 64]): light paths per pixel of the
 ///   whole image per sample index.
+/// - caustic_radius (default kDefaultCausticRadius, in [0, 1], a fraction of the diagonal of
+///   the scene's bounds): with caustics, the camera's first hit also connects to one caustic
+///   vertex of its sample index (where a light path landed after specular bounces) at least
+///   this far away, and the camera paths that would find that light through a second surface
+///   that far away are left out; nearer pairs stay with the camera paths (a connection's
+///   1 / distance^2 would make fireflies of them).
 /// - microfacet, light_samples, hemisphere, ambient_visible, two_sided_emitters: see
 ///   LightTransportSettings.
 class PathIntegrator final : public PixelIntegrator {
@@ -44,9 +50,11 @@ class PathIntegrator final : public PixelIntegrator {
     bool rr_sqrt;
     bool caustics;
     double caustic_paths;
+    double caustic_radius;
   };
 
-  static constexpr double kDefaultCausticPaths = 0.25;
+  static constexpr double kDefaultCausticPaths = 0.02;
+  static constexpr double kDefaultCausticRadius = 0.05;
 
   explicit PathIntegrator(const ParamSet& params);
   std::string_view name() const override { return "path"; }

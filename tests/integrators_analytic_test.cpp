@@ -377,16 +377,52 @@ Scene caustic_floor(MaterialType ball) {
   return scene;
 }
 
+/// caustic_floor(glass) with a floor only as wide as the ball's shadow and a diffuse panel beside
+/// the ball at height 1.6, facing down, seen from below: the light cannot reach its underside
+/// directly, so what lights it is the floor, mostly the bright caustic under the ball (which
+/// the camera's first hit reaches by connecting to caustic vertices).
+Scene caustic_canopy() {
+  Scene scene = caustic_floor(MaterialType::kGlass);
+  scene.source = "caustic canopy (built in code)";
+  // A floor no wider than the ball's shadow, so that the caustic is most of what it sends up.
+  const float w = 0.6f;
+  scene.geometry.meshes[0] = test::quad("floor", {-w, 0, -w}, {-w, 0, w}, {w, 0, w}, {w, 0, -w},
+                                        scene.geometry.meshes[0].material_id);
+  const uint32_t panel = test::add_material(scene, MaterialType::kDiffuse, Rgb(0.8f), "panel");
+  scene.geometry.meshes.push_back(test::quad("panel", {0.7f, 1.6f, -1.0f}, {2.2f, 1.6f, -1.0f},
+                                             {2.2f, 1.6f, 1.0f}, {0.7f, 1.6f, 1.0f}, panel));
+  scene.camera.position = Vec3(1.45f, 0.4f, 2.6f);
+  scene.camera.target = Vec3(1.45f, 1.6f, 0.0f);
+  scene.geometry.finalize();
+  scene.validate();
+  return scene;
+}
+
 TEST(IntegratorsAnalytic, LightTracedCausticsMatchThePathTracersOwn) {
   // path.caustics=false finds the caustics of the ball with BSDF-sampled camera paths only; by
   // default they are light-traced instead. Both are unbiased: the images agree, region by
   // region, also in the ball's shadow where all the light is caustic.
+  // In the Cornell box, walls and ceiling also see the caustics on the floor: the camera's first
+  // hit connects to the caustic vertices there.
   uint64_t seed = 300;
-  for (const MaterialType material : {MaterialType::kGlass, MaterialType::kMirror}) {
-    const Scene scene = caustic_floor(material);
+  const auto cornell = [](MaterialType material) {
+    return test::cornell_box(
+        {.spheres = true, .sphere_material = material, .camera_below_light = true});
+  };
+  struct Case {
+    MaterialType material;
+    Scene scene;
+    int spp;
+  };
+  const Case cases[] = {{MaterialType::kGlass, caustic_floor(MaterialType::kGlass), 1024},
+                        {MaterialType::kMirror, caustic_floor(MaterialType::kMirror), 1024},
+                        {MaterialType::kGlass, cornell(MaterialType::kGlass), 1024},
+                        // lit by caustics reached only through a bounce: noisier without them
+                        {MaterialType::kGlass, caustic_canopy(), 8192}};
+  for (const auto& [material, scene, spp] : cases) {
     TestRender settings;
     settings.width = settings.height = 32;
-    settings.spp = 1024;
+    settings.spp = spp;
     settings.max_depth = 6;
     settings.sampler = "sobol";
     settings.seed = ++seed;
@@ -396,7 +432,8 @@ TEST(IntegratorsAnalytic, LightTracedCausticsMatchThePathTracersOwn) {
     settings.seed = ++seed;
     const Image untraced = test::render_scene(scene, "path", params, settings);
     const std::string what =
-        material == MaterialType::kGlass ? "glass ball caustics" : "mirror ball caustics";
+        scene.source +
+        (material == MaterialType::kGlass ? ": glass ball caustics" : ": mirror ball caustics");
     test::expect_same_mean(traced, untraced, 4.5, what);
     expect_same_block_means(traced, untraced, 8, 4.5, what);
     // The light tracer's estimate is less noisy: the image's variance falls.
