@@ -31,8 +31,9 @@ CausticTracer::CausticTracer(const RenderContext& context, const ShadingContext&
       max_specular_bounces_(max_depth - 1),
       width_(width),
       height_(height),
-      paths_(uint32_t(std::clamp(std::llround(paths_per_pixel * double(width) * double(height)),
-                                 1LL, (1LL << 31)))),
+      paths_(uint32_t(
+          std::clamp(std::llround(paths_per_pixel * double(width) * double(height)), 1LL,
+                     (long long)LightTracedImage::max_paths(uint32_t(std::max(1, context.spp)))))),
       pixel_area_(camera_.pixel_area(width, height)),
       sampler_prototype_(context.sampler_prototype.clone()) {
   std::vector<float> powers;

@@ -35,7 +35,8 @@ class CausticTracer {
  public:
   /// For the render `context` (whose camera and scene must outlive the tracer), shading with
   /// `shading`; paths of at most `max_depth` bounces counted as the path tracer counts them;
-  /// `paths_per_pixel` x width x height paths per sample index.
+  /// `paths_per_pixel` x width x height paths per sample index, at most
+  /// LightTracedImage::max_paths(spp) (so that every sample index of the render can stay cached).
   CausticTracer(const RenderContext& context, const ShadingContext& shading, int max_depth,
                 double paths_per_pixel, int width, int height);
 

@@ -57,8 +57,19 @@ struct LightTracedImage::Tracing {
   std::shared_ptr<const LightTracedSample> image;  ///< set before ready
 };
 
-LightTracedImage::LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height)
-    : trace_(std::move(trace)), paths_(paths), width_(width), height_(height) {}
+LightTracedImage::LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height,
+                                   size_t cached)
+    : trace_(std::move(trace)),
+      paths_(paths),
+      width_(width),
+      height_(height),
+      cached_(std::max<size_t>(1, cached)) {}
+
+uint32_t LightTracedImage::max_paths(uint32_t samples) {
+  const size_t per_path = sizeof(Splat) + sizeof(CausticVertex);
+  const size_t paths = kMemoryBudget / (per_path * std::max<size_t>(1, samples));
+  return uint32_t(std::clamp<size_t>(paths, 1, uint32_t(1) << 31));
+}
 
 LightTracedImage::~LightTracedImage() = default;
 
@@ -69,7 +80,7 @@ std::shared_ptr<LightTracedImage::Tracing> LightTracedImage::tracing_of(uint32_t
   cache_.emplace(sample, tracing);
   order_.push_back(sample);
   // A dropped entry stays alive while threads use it; asked for again, it is traced again.
-  while (order_.size() > kCachedSamples) {
+  while (order_.size() > cached_) {
     cache_.erase(order_.front());
     order_.pop_front();
   }

@@ -73,8 +73,10 @@ class LightTracedSample {
 /// What a light tracer leaves per sample index (LightTracedSample), traced on demand: the threads
 /// that ask for a sample index not traced yet share its paths in chunks, then all receive the same
 /// image. Each image is a pure function of its sample index (the tracer must be), so an image
-/// dropped from the cache and traced again has the same bits; the most recent kCachedSamples
-/// are kept. Thread-safe.
+/// dropped from the cache and traced again has the same bits. The most recent `cached` indices
+/// are kept (a render's spp, so that schedules handing out tiles with every sample, as MPI's
+/// does, trace each index once: kMemoryBudget bounds what that holds, see max_paths()).
+/// Thread-safe.
 class LightTracedImage {
  public:
   /// Traces the paths [first, last) of sample index `sample` and appends their splats and
@@ -83,7 +85,7 @@ class LightTracedImage {
                                            std::vector<Splat>&, std::vector<CausticVertex>&)>;
 
   /// Sample indices traced with `paths` paths each, over a width x height image.
-  LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height);
+  LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height, size_t cached);
   ~LightTracedImage();
 
   /// The image of sample index `sample`; traces it (with whichever other threads ask for it
@@ -92,7 +94,11 @@ class LightTracedImage {
   uint32_t paths_per_sample() const { return paths_; }
 
   static constexpr uint32_t kChunkPaths = 256;
-  static constexpr size_t kCachedSamples = 256;
+  /// The most paths per sample index whose samples, `samples` of them, fit kMemoryBudget however
+  /// many of the paths leave a splat and a caustic vertex (at least 1).
+  static uint32_t max_paths(uint32_t samples);
+
+  static constexpr size_t kMemoryBudget = size_t(1) << 30;
 
  private:
   struct Tracing;
@@ -101,6 +107,7 @@ class LightTracedImage {
   TraceFunction trace_;
   uint32_t paths_;
   int width_, height_;
+  size_t cached_;
   mutable std::mutex mutex_;
   mutable std::map<uint32_t, std::shared_ptr<Tracing>> cache_;
   mutable std::deque<uint32_t> order_;  ///< cached sample indices, oldest first
