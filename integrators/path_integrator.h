@@ -25,8 +25,9 @@ namespace prism {
 ///   (CausticTracer) instead of left to the rare BSDF-sampled camera path that finds them;
 ///   applies with mis, accumulate and without hemisphere, to pinhole cameras of scenes with a
 ///   specular material, max_depth >= 2.
-/// - caustic_paths (default kDefaultCausticPaths, in (0, 64]): light paths per pixel of the
-///   whole image per sample index.
+/// - caustic_paths (default kDefaultCausticPaths, in [2^-20, 64]): light paths per pixel of the
+///   whole image per sample index (at most LightTracedImage::max_paths(spp), so that a render's
+///   light-traced samples fit 1 GiB).
 /// - caustic_radius (default kDefaultCausticRadius, in [0, 1], a fraction of the diagonal of
 ///   the scene's bounds): with caustics, the camera's first hit also connects to one caustic
 ///   vertex of its sample index (where a light path landed after specular bounces) at least

@@ -368,12 +368,8 @@ Scene caustic_floor(MaterialType ball) {
   scene.geometry.meshes.push_back(
       test::quad("light", {-s, h, -s}, {s, h, -s}, {s, h, s}, {-s, h, s}, lamp));
   scene.geometry.spheres.push_back(Sphere{Vec3(0.0f, 0.75f, 0.0f), 0.5f, special});
-  scene.camera.position = Vec3(0.0f, 1.0f, 3.5f);
-  scene.camera.target = Vec3(0.0f, 0.1f, 0.0f);
-  scene.camera.up = Vec3(0.0f, 1.0f, 0.0f);
-  scene.camera.hfov_deg = scene.camera.vfov_deg = 30.0f;
-  scene.geometry.finalize();
-  scene.validate();
+  test::aim_camera_and_finish(scene, {0.0f, 1.0f, 3.5f}, {0.0f, 0.1f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                              30.0f);
   return scene;
 }
 
@@ -391,10 +387,8 @@ Scene caustic_canopy() {
   const uint32_t panel = test::add_material(scene, MaterialType::kDiffuse, Rgb(0.8f), "panel");
   scene.geometry.meshes.push_back(test::quad("panel", {0.7f, 1.6f, -1.0f}, {2.2f, 1.6f, -1.0f},
                                              {2.2f, 1.6f, 1.0f}, {0.7f, 1.6f, 1.0f}, panel));
-  scene.camera.position = Vec3(1.45f, 0.4f, 2.6f);
-  scene.camera.target = Vec3(1.45f, 1.6f, 0.0f);
-  scene.geometry.finalize();
-  scene.validate();
+  test::aim_camera_and_finish(scene, {1.45f, 0.4f, 2.6f}, {1.45f, 1.6f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                              30.0f);
   return scene;
 }
 
@@ -460,12 +454,8 @@ Scene ambient_floor(bool ball) {
   sky.up = Vec3(0.0f, 0.0f, 1.0f);
   scene.lights.push_back(sky);
   // Looking down at 32 degrees: every camera ray meets the floor.
-  scene.camera.position = Vec3(0.0f, -4.0f, 3.0f);
-  scene.camera.target = Vec3(0.0f, 0.0f, 0.5f);
-  scene.camera.up = Vec3(0.0f, 0.0f, 1.0f);
-  scene.camera.hfov_deg = scene.camera.vfov_deg = 40.0f;
-  scene.geometry.finalize();
-  scene.validate();
+  test::aim_camera_and_finish(scene, {0.0f, -4.0f, 3.0f}, {0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, 1.0f},
+                              40.0f);
   return scene;
 }
 

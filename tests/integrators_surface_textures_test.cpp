@@ -57,11 +57,7 @@ Scene textured_quad_scene(const Material& material) {
   source.name = "quadrants";
   scene.textures.push_back(source);
   scene.texture_lookup = std::make_shared<QuadrantLookup>();
-  scene.camera.position = Vec3(0, 0, 4);
-  scene.camera.target = Vec3(0, 0, 0);
-  scene.camera.hfov_deg = scene.camera.vfov_deg = 40.0f;
-  scene.geometry.finalize();
-  scene.validate();
+  test::aim_camera_and_finish(scene, {0, 0, 4}, {0, 0, 0}, scene.camera.up, 40.0f);
   return scene;
 }
 

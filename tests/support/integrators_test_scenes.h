@@ -40,6 +40,18 @@ inline TriangleMesh quad(const std::string& name, Vec3 a, Vec3 b, Vec3 c, Vec3 d
   return mesh;
 }
 
+/// Aims the camera of `scene` from `position` at `target` with `up` and a square field of view
+/// of `fov_deg`, then finalizes and validates the scene: the last step of building a test scene.
+inline void aim_camera_and_finish(Scene& scene, Vec3 position, Vec3 target, Vec3 up,
+                                  float fov_deg) {
+  scene.camera.position = position;
+  scene.camera.target = target;
+  scene.camera.up = up;
+  scene.camera.hfov_deg = scene.camera.vfov_deg = fov_deg;
+  scene.geometry.finalize();
+  scene.validate();
+}
+
 /// Options of cornell_box().
 struct CornellOptions {
   bool spheres = false;  ///< a diffuse sphere and a second one of `sphere_material`
