@@ -12,8 +12,6 @@ LightTracedSample::LightTracedSample(std::vector<Splat> splats, std::vector<Caus
       paths_(paths),
       vertices_(std::move(vertices)),
       row_begin_(size_t(height) + 1, 0) {
-  std::sort(vertices_.begin(), vertices_.end(),
-            [](const CausticVertex& a, const CausticVertex& b) { return a.path < b.path; });
   std::sort(splats.begin(), splats.end(), [](const Splat& a, const Splat& b) {
     return a.pixel != b.pixel ? a.pixel < b.pixel : a.path < b.path;
   });
@@ -100,7 +98,7 @@ std::shared_ptr<const LightTracedSample> LightTracedImage::sample(uint32_t sampl
       if (!t.error) t.error = std::current_exception();
     }
     if (t.finished_chunks.fetch_add(1) + 1 != t.chunks) continue;
-    // The last chunk: gather every chunk's splats into the image.
+    // The last chunk: gather every chunk's splats and vertices, in chunk order (path order).
     std::shared_ptr<const LightTracedSample> image;
     try {
       size_t count = 0;

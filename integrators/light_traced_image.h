@@ -29,7 +29,6 @@ struct CausticVertex {
   SurfaceInteraction si;
   Vec3 to_light{0.0f};  ///< unit, toward the path's previous vertex
   Rgb beta{0.0f};       ///< the path's throughput arriving at si (one path's, not divided)
-  uint32_t path = 0;    ///< the path's index among its sample index's paths
 };
 
 /// What the light paths of one sample index left: the radiance they deposited per pixel (a
@@ -39,13 +38,12 @@ class LightTracedSample {
  public:
   /// Sums `splats` (in any order) per pixel, in the order of their paths, in double: the same
   /// bits whatever order the splats arrive in. Pixels must lie inside the width x height image.
-  /// `vertices` (any order) are kept in path order; `paths` is how many paths were traced.
+  /// `vertices` must be in path order (as the paths were traced); `paths` is how many paths
+  /// were traced.
   LightTracedSample(std::vector<Splat> splats, std::vector<CausticVertex> vertices, int width,
                     int height, uint32_t paths);
   /// The radiance deposited on `pixel` (inside the image): 0 for most pixels.
   Rgb at(glm::ivec2 pixel) const;
-  /// Pixels that received radiance.
-  size_t size() const { return pixels_.size(); }
   /// The caustic vertices, in path order, and the number of paths they came from.
   const std::vector<CausticVertex>& vertices() const { return vertices_; }
   uint32_t paths() const { return paths_; }
@@ -91,7 +89,6 @@ class LightTracedImage {
   /// The image of sample index `sample`; traces it (with whichever other threads ask for it
   /// meanwhile) if it is not cached. Rethrows what the tracing threw.
   std::shared_ptr<const LightTracedSample> sample(uint32_t sample) const;
-  uint32_t paths_per_sample() const { return paths_; }
 
   static constexpr uint32_t kChunkPaths = 256;
   /// The most paths per sample index whose samples, `samples` of them, fit kMemoryBudget however
