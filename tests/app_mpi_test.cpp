@@ -99,15 +99,27 @@ class Launch {
   fs::path out_, err_;
 };
 
+/// Whether LeakSanitizer checks the ranks (ASan builds only; other builds ignore it).
+enum class RankLeakCheck {
+  /// No leak check in the ranks: ASan's other checks only, with its fast unwinder.
+  kOff,
+  /// Leak check with every allocation's whole stack: the suppressions of Open MPI's own memory
+  /// (tests/support/lsan.supp) match its library frames, which the fast unwinder loses. That
+  /// makes a run about ten times slower (25 s against 2 s for the smallest one), so two tests
+  /// ask for it: a whole render across ranks and a run that one rank fails
+  /// (docs/RELIABILITY.md, "Options").
+  kWholeStacks,
+};
+
 /// mpirun's arguments for 3 ranks of `program` (prism by default) with `args`.
 std::vector<std::string> mpirun_args(const std::vector<std::string>& args,
+                                     RankLeakCheck leak_check = RankLeakCheck::kOff,
                                      const std::string& program = PRISM_BINARY) {
   std::vector<std::string> all = {"--allow-run-as-root", "--oversubscribe", "-np", "3"};
-  // Under AddressSanitizer the ranks unwind every allocation's whole stack: the leak
-  // suppressions of Open MPI's own memory (tests/support/lsan.supp) match its library frames,
-  // which the fast unwinder loses. Only here: it slows every allocation down.
   if (const char* asan = std::getenv("ASAN_OPTIONS")) {
-    all.insert(all.end(), {"-x", std::string("ASAN_OPTIONS=") + asan + ":fast_unwind_on_malloc=0"});
+    const char* rank_options =
+        leak_check == RankLeakCheck::kWholeStacks ? ":fast_unwind_on_malloc=0" : ":detect_leaks=0";
+    all.insert(all.end(), {"-x", std::string("ASAN_OPTIONS=") + asan + rank_options});
   }
   all.push_back(program);
   all.insert(all.end(), args.begin(), args.end());
@@ -115,8 +127,8 @@ std::vector<std::string> mpirun_args(const std::vector<std::string>& args,
 }
 
 ProgramResult run_mpi(const fs::path& mpirun, const std::vector<std::string>& args,
-                      const fs::path& dir) {
-  return Launch(mpirun, mpirun_args(args), dir).wait();
+                      const fs::path& dir, RankLeakCheck leak_check = RankLeakCheck::kOff) {
+  return Launch(mpirun, mpirun_args(args, leak_check), dir).wait();
 }
 
 /// The ranks started by the mpirun process `mpirun` (its children), by rank.
@@ -173,13 +185,14 @@ size_t count_of(const std::string& text, const std::string& part) {
 /// Renders `args` with -f <dir>/one.exr in one process and with -f <dir>/mpi.exr on 3 ranks and
 /// expects the same pixels; returns the MPI run.
 ProgramResult expect_same_render(const fs::path& mpirun, const fs::path& dir,
-                                 std::vector<std::string> args) {
+                                 std::vector<std::string> args,
+                                 RankLeakCheck leak_check = RankLeakCheck::kOff) {
   std::vector<std::string> one = args;
   one.insert(one.end(), {"-f", (dir / "one.exr").string()});
   const ProgramResult single = test::run_prism(one);
   EXPECT_EQ(single.exit_code, 0) << single.err;
   args.insert(args.end(), {"-f", (dir / "mpi.exr").string()});
-  const ProgramResult result = run_mpi(mpirun, args, dir);
+  const ProgramResult result = run_mpi(mpirun, args, dir, leak_check);
   EXPECT_EQ(result.exit_code, 0) << result.err;
   if (single.exit_code == 0 && result.exit_code == 0) {
     expect_same_pixels(dir / "one.exr", dir / "mpi.exr");
@@ -190,8 +203,8 @@ ProgramResult expect_same_render(const fs::path& mpirun, const fs::path& dir,
 TEST(AppMpi, ThreeRanksRenderTheOneProcessFrameAndReportOnce) {
   PRISM_REQUIRE_MPIRUN(mpirun);
   const fs::path dir = test::make_temp_dir("mpi_frame");
-  const ProgramResult result =
-      expect_same_render(mpirun, dir, {"-r", "64", "48", "-s", "8", kScene});
+  const ProgramResult result = expect_same_render(
+      mpirun, dir, {"-r", "64", "48", "-s", "8", kScene}, RankLeakCheck::kWholeStacks);
   // Rank 0 alone prints the summary, and the progress (its final line: stderr is no terminal).
   EXPECT_EQ(count_of(result.out, "cornell_spheres.json:"), 1u) << result.out;
   EXPECT_NE(result.out.find("on 3 MPI ranks"), std::string::npos) << result.out;
@@ -280,13 +293,15 @@ fs::path rank1_wrapper(const fs::path& dir, const std::string& good, const std::
 
 /// Runs a 3-rank render whose rank 1 gets `rank1_scene`; expects exit 2, one error line naming
 /// rank 1 and containing `expected`, and no output file.
-void expect_rank1_failure(const std::string& rank1_scene, const std::string& expected) {
+void expect_rank1_failure(const std::string& rank1_scene, const std::string& expected,
+                          RankLeakCheck leak_check = RankLeakCheck::kOff) {
   PRISM_REQUIRE_MPIRUN(mpirun);
   const fs::path dir = test::make_temp_dir("mpi_rank1");
   const fs::path out = dir / "out.exr";
   const fs::path wrapper = rank1_wrapper(dir, kScene, rank1_scene);
-  const std::vector<std::string> args = mpirun_args(
-      {PRISM_BINARY, "-q", "-r", "32", "24", "-s", "4", "-f", out.string()}, wrapper.string());
+  const std::vector<std::string> args =
+      mpirun_args({PRISM_BINARY, "-q", "-r", "32", "24", "-s", "4", "-f", out.string()}, leak_check,
+                  wrapper.string());
   const ProgramResult result = Launch(mpirun, args, dir).wait();
   EXPECT_EQ(result.exit_code, 2) << result.err;
   EXPECT_EQ(count_of(result.err, "prism: error:"), 1u) << result.err;
@@ -297,7 +312,8 @@ void expect_rank1_failure(const std::string& rank1_scene, const std::string& exp
 }
 
 TEST(AppMpi, ARankThatCannotReadTheSceneFailsTheRunNamingIt) {
-  expect_rank1_failure("/nonexistent/scene.json", "/nonexistent/scene.json");
+  expect_rank1_failure("/nonexistent/scene.json", "/nonexistent/scene.json",
+                       RankLeakCheck::kWholeStacks);
 }
 
 TEST(AppMpi, ARankWithAnotherSceneFailsTheRunNamingIt) {
