@@ -54,14 +54,12 @@ struct RunConfig {
   bool embree_robust;
   bool bvh_variants;  ///< also every other bvh split, layout and instruction set
 };
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-// Under a sanitizer (5 to 10 times slower) a quarter of the rays and of the brute force: the
-// same scenes, backends, splits, layouts and instruction sets, so the same code paths are
-// instrumented, while the normal build's run keeps the full count (docs/RELIABILITY.md).
-constexpr RunConfig kDefaultRun{25'000, 5'000, 2.5e7, false, true};
-#else
-constexpr RunConfig kDefaultRun{100'000, 20'000, 1e8, false, true};
-#endif
+// Under a sanitizer a quarter of the rays and of the brute force: the same scenes, backends,
+// splits, layouts and instruction sets, so the same code paths are instrumented, while the
+// normal build's run keeps the full count (docs/RELIABILITY.md).
+constexpr RunConfig kDefaultRun = test::kSanitizedBuild
+                                      ? RunConfig{25'000, 5'000, 2.5e7, false, true}
+                                      : RunConfig{100'000, 20'000, 1e8, false, true};
 constexpr RunConfig kLongRun{1'000'000, 100'000, 1e9, false, true};
 constexpr RunConfig kRobustEmbreeRun{20'000, 5'000, 0.0, true, false};
 

@@ -7,6 +7,14 @@
 
 namespace prism::test {
 
+/// Whether this build is instrumented by AddressSanitizer or ThreadSanitizer (scripts/test
+/// --sanitize), and so is the prism it runs: several times slower, with a slower start-up.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr bool kSanitizedBuild = true;
+#else
+inline constexpr bool kSanitizedBuild = false;
+#endif
+
 /// ../shared/scenes/cs184 beside the repository, if present.
 std::optional<std::filesystem::path> cs184_scene_dir();
 
