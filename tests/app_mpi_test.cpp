@@ -235,9 +235,11 @@ TEST(AppMpi, Cs184SceneIsTheOneProcessFrame) {
   fs::remove_all(dir);
 }
 
-// The render of the checkpoint tests: under a second of work in 24 tiles, adaptive.
-const std::vector<std::string> kLongerRender = {"-q",  "-r", "96", "64",   "-s",
-                                                "128", "-a", "16", "0.02", kScene};
+// The render of the checkpoint tests: under a second of work in 24 tiles, adaptive (a quarter
+// of the samples under a sanitizer: still seconds there).
+const std::vector<std::string> kLongerRender = {
+    "-q", "-r", "96",   "64",  "-s", std::to_string(test::sanitizer_share(128)),
+    "-a", "16", "0.02", kScene};
 
 std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
   args.insert(args.begin(), more.begin(), more.end());

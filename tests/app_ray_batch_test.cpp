@@ -17,6 +17,7 @@
 #include "core/app/ray_batch.h"
 #include "core/parallel.h"
 #include "scenes/mesh_generator.h"
+#include "tests/support/test_support.h"
 
 namespace prism {
 namespace {
@@ -112,7 +113,7 @@ class AppRayBatch : public ::testing::TestWithParam<std::string> {
 };
 
 TEST_P(AppRayBatch, PerRayBoundsGiveTheSingleRayResults) {
-  const Rays rays = random_rays(20000, 1);
+  const Rays rays = random_rays(test::sanitizer_share(20000), 1);
   expect_same_as_single_rays(batch_of(rays, false));
 }
 

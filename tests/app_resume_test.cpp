@@ -299,7 +299,9 @@ TEST(AppResume, KilledAtRandomMomentsAndResumedUntilDoneGivesTheUninterruptedBit
   const fs::path ref = dirs.out / "ref.exr", out = dirs.out / "out.exr", ck = dirs.out / "ck.exr";
   const fs::path log = dirs.root / "log.txt";
   const auto start = std::chrono::steady_clock::now();
-  run_ok(render_args(plus(spheres(256), {"-f", ref.string()})));
+  // 64 passes of 4 samples, of 1 under a sanitizer (a quarter of the work, still seconds).
+  const int spp = sanitizer_share(256);
+  run_ok(render_args(plus(spheres(spp), {"-f", ref.string()})));
   // The uninterrupted run's wall time, start-up included: kills come after 10% to 50% of it, so
   // that no run from the start, nor the first resume, can finish (several kills), while most
   // runs get through a few checkpoints (0.05 s apart) before they die.
@@ -309,13 +311,14 @@ TEST(AppResume, KilledAtRandomMomentsAndResumedUntilDoneGivesTheUninterruptedBit
   std::uniform_real_distribution<double> delay(0.1 * run_seconds, 0.5 * run_seconds);
 
   const std::vector<std::string> fresh =
-      render_args(plus(spheres(256), {"--checkpoint", ck.string(), "--checkpoint-interval", "0.05",
+      render_args(plus(spheres(spp), {"--checkpoint", ck.string(), "--checkpoint-interval", "0.05",
                                       "-f", out.string()}));
   int kills = 0, resumes = 0;
   bool finished = false;
   // On a loaded machine every run may take longer than the first: after kKilledAttempts kills
   // the runs are left to finish, so the loop ends whatever the load (a resume is still tested).
-  constexpr int kKilledAttempts = 40;
+  // Under a sanitizer, where most of a killed run is start-up, 10.
+  constexpr int kKilledAttempts = sanitizer_share(40);
   for (int attempt = 0; attempt < kKilledAttempts + 20 && !finished; ++attempt) {
     const bool resume = fs::exists(ck);
     resumes += resume;

@@ -15,6 +15,14 @@ inline constexpr bool kSanitizedBuild = true;
 inline constexpr bool kSanitizedBuild = false;
 #endif
 
+/// `count` in the normal build, a quarter of it (at least 1) in a sanitizer build: for the
+/// tests whose own work (samples, rays, repeated runs) would take a minute or more instrumented,
+/// where prism renders 7 to 15 times slower (docs/RELIABILITY.md, "Sanitizers"). The same code
+/// runs, with the same checks, a quarter as often; the normal build keeps the full count.
+constexpr int sanitizer_share(int count) {
+  return kSanitizedBuild ? (count / 4 > 0 ? count / 4 : 1) : count;
+}
+
 /// ../shared/scenes/cs184 beside the repository, if present.
 std::optional<std::filesystem::path> cs184_scene_dir();
 
