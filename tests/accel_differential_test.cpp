@@ -57,9 +57,9 @@ struct RunConfig {
 // Under a sanitizer a quarter of the rays and of the brute force: the same scenes, backends,
 // splits, layouts and instruction sets, so the same code paths are instrumented, while the
 // normal build's run keeps the full count (docs/RELIABILITY.md).
-constexpr RunConfig kDefaultRun = test::kSanitizedBuild
-                                      ? RunConfig{25'000, 5'000, 2.5e7, false, true}
-                                      : RunConfig{100'000, 20'000, 1e8, false, true};
+constexpr RunConfig kDefaultRun{test::sanitizer_share<size_t>(100'000),
+                                test::sanitizer_share<size_t>(20'000), test::sanitizer_share(1e8),
+                                false, true};
 constexpr RunConfig kLongRun{1'000'000, 100'000, 1e9, false, true};
 constexpr RunConfig kRobustEmbreeRun{20'000, 5'000, 0.0, true, false};
 

@@ -19,8 +19,11 @@ inline constexpr bool kSanitizedBuild = false;
 /// tests whose own work (samples, rays, repeated runs) would take a minute or more instrumented,
 /// where prism renders 7 to 15 times slower (docs/RELIABILITY.md, "Sanitizers"). The same code
 /// runs, with the same checks, a quarter as often; the normal build keeps the full count.
-constexpr int sanitizer_share(int count) {
-  return kSanitizedBuild ? (count / 4 > 0 ? count / 4 : 1) : count;
+template <typename Count>
+constexpr Count sanitizer_share(Count count) {
+  if (!kSanitizedBuild) return count;
+  const Count quarter = count / 4;
+  return quarter > Count(0) ? quarter : Count(1);
 }
 
 /// ../shared/scenes/cs184 beside the repository, if present.
