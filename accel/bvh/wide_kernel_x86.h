@@ -6,38 +6,63 @@
 // same order, and these files are compiled with -ffp-contract=off so that no multiply-add is
 // fused behind our back (the FMAs in the box test are explicit and only move padded bounds).
 
+/// WatertightRay's axes for every outcome of its comparisons, packed kx | ky << 2 | kz << 4.
+/// Index bits: 0 |d.x| >= |d.y|, 1 |d.y| >= |d.z|, 3 |d.x| >= |d.z|, 6 + a d[a] < 0 (bits 2, 4
+/// and 5 are ignored). A load instead of branches, which incoherent rays would mispredict.
+struct WatertightAxes {
+  unsigned char packed[512];
+};
+constexpr WatertightAxes make_watertight_axes() {
+  WatertightAxes table{};
+  for (int i = 0; i < 512; ++i) {
+    const bool x_ge_y = (i & 1) != 0, y_ge_z = (i & 2) != 0, x_ge_z = (i & 8) != 0;
+    const int kz = (x_ge_y && x_ge_z) ? 0 : (y_ge_z ? 1 : 2);  // max_dimension()
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if ((i >> (6 + kz)) & 1) std::swap(kx, ky);
+    table.packed[i] = static_cast<unsigned char>(kx | ky << 2 | kz << 4);
+  }
+  return table;
+}
+inline constexpr WatertightAxes kWatertightAxes = make_watertight_axes();
+
 /// The per-ray constants, four lanes at a time. The watertight test's axes and shear are
-/// computed exactly as WatertightRay does (same comparisons, one IEEE division, same products).
+/// computed exactly as WatertightRay does (same comparisons, the same division 1 / d[kz], same
+/// products), without a branch. The box test's reciprocals do not wait for the axes.
 PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& s) {
   // Ray is {origin, tmin, direction, tmax}: two unaligned loads fetch it all.
   const __m128 o = _mm_loadu_ps(&ray.origin.x);
   const __m128 d = _mm_loadu_ps(&ray.direction.x);
   const __m128 sign = _mm_set1_ps(-0.0f);
+  const __m128 one = _mm_set1_ps(1.0f);
   const __m128 abs_d = _mm_andnot_ps(sign, d);
-  alignas(16) float dv[4], ad[4];
-  _mm_store_ps(dv, d);
-  _mm_store_ps(ad, abs_d);
+  const __m128 tiny = _mm_cmplt_ps(abs_d, _mm_set1_ps(kMinDirection));
+  const __m128 dd =
+      _mm_blendv_ps(d, _mm_or_ps(_mm_and_ps(d, sign), _mm_set1_ps(kMinDirection)), tiny);
+  const __m128 inv = _mm_div_ps(one, dd);  // lane 3: 1 / tmax, unused
+  // 1 / d without the tiny components replaced: lane kz is WatertightRay's shear_z.
+  const __m128 inv_d = _mm_div_ps(one, d);
   s.tmin = ray.tmin;
   s.tmax = ray.tmax;
-  // WatertightRay's choice of axes, without branches: incoherent rays would mispredict them.
-  const int x_largest = static_cast<int>(ad[0] >= ad[1]) & static_cast<int>(ad[0] >= ad[2]);
-  s.kz = (1 - x_largest) * (2 - static_cast<int>(ad[1] >= ad[2]));
-  static constexpr int kNextAxis[3] = {1, 2, 0};
-  s.kx = kNextAxis[s.kz];
-  s.ky = kNextAxis[s.kx];
-  const int swap = (s.kx ^ s.ky) & -static_cast<int>(dv[s.kz] < 0.0f);
-  s.kx ^= swap;
-  s.ky ^= swap;
-  // Lane 3 carries d[kz], so one division yields 1 / d per axis and the shear's 1 / d[kz].
-  const __m128 tiny = _mm_cmplt_ps(abs_d, _mm_set1_ps(kMinDirection));
-  __m128 dd = _mm_blendv_ps(d, _mm_or_ps(_mm_and_ps(d, sign), _mm_set1_ps(kMinDirection)), tiny);
-  dd = _mm_insert_ps(dd, _mm_set_ss(dv[s.kz]), 0x30);
-  const __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), dd);
-  alignas(16) float iv[4];
+  const __m128 x_ge = _mm_cmpge_ps(abs_d, _mm_shuffle_ps(abs_d, abs_d, _MM_SHUFFLE(3, 0, 2, 1)));
+  const __m128 x_ge_z = _mm_cmpge_ps(abs_d, _mm_shuffle_ps(abs_d, abs_d, _MM_SHUFFLE(3, 1, 0, 2)));
+  const int index = (_mm_movemask_ps(x_ge) & 3) | ((_mm_movemask_ps(x_ge_z) & 1) << 3) |
+                    ((_mm_movemask_ps(_mm_cmplt_ps(d, _mm_setzero_ps())) & 7) << 6);
+  const unsigned axes = kWatertightAxes.packed[index];
+  s.kx = static_cast<int>(axes & 3u);
+  s.ky = static_cast<int>((axes >> 2) & 3u);
+  s.kz = static_cast<int>(axes >> 4);
+  // Lanes kx, ky, kz of d and of 1 / d: shear_x = -d[kx] * shear_z, shear_y likewise.
+  const __m128i lanes =
+      _mm_srlv_epi32(_mm_set1_epi32(static_cast<int>(axes)), _mm_setr_epi32(0, 2, 4, 4));
+  const __m128 inv_k = _mm_permutevar_ps(inv_d, lanes);
+  const __m128 shear_z = _mm_shuffle_ps(inv_k, inv_k, _MM_SHUFFLE(2, 2, 2, 2));
+  const __m128 shear = _mm_mul_ps(_mm_xor_ps(_mm_permutevar_ps(d, lanes), sign), shear_z);
+  alignas(16) float shear_v[4], iv[4];
+  _mm_store_ps(shear_v, shear);
+  s.shear_x = shear_v[0];
+  s.shear_y = shear_v[1];
+  s.shear_z = _mm_cvtss_f32(shear_z);
   _mm_store_ps(iv, inv);
-  s.shear_z = iv[3];
-  s.shear_x = -dv[s.kx] * s.shear_z;
-  s.shear_y = -dv[s.ky] * s.shear_z;
 
   const __m128 abs_o = _mm_andnot_ps(sign, o);
   __m128 scale = _mm_max_ps(abs_o, _mm_shuffle_ps(abs_o, abs_o, _MM_SHUFFLE(3, 0, 2, 1)));
