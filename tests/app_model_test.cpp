@@ -170,7 +170,7 @@ TEST(AppModel, MissingTexturesAndBrokenModelsAreOneLineErrors) {
                                      "vt 0 1\nusemtl m\nf 1/1 2/2 3/3\n");
   dirs.scene("quad.mtl", "newmtl m\nKd 1 1 1\nmap_Kd textures/missing_wood.png\n");
   const fs::path out = dirs.out / "x.exr";
-  for (const std::string& command : {"render", "info"}) {
+  for (const std::string& command : {std::string("render"), std::string("info")}) {
     SCOPED_TRACE(command);
     std::vector<std::string> args = {command, obj};
     if (command == "render") args.insert(args.end(), {"-r", "8", "8", "-f", out.string()});

@@ -361,7 +361,7 @@ TEST(AppResume, TemporaryFilesOfKilledRunsAreRemoved) {
   ASSERT_TRUE(fs::exists(ck));
   const std::string dead = std::to_string(dead_pid());
   const std::string alive = std::to_string(getpid());
-  for (const std::string name :
+  for (const std::string& name :
        {".ck.exr.prism-tmp-" + dead + "-0", ".out.exr.prism-tmp-" + dead + "-3",
         ".ck.exr.prism-tmp-" + alive + "-1"}) {
     write_text(dirs.out / name, "partial");

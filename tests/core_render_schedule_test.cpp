@@ -136,7 +136,9 @@ TEST(CoreRenderSchedule, PassOfSampleIsThePassHoldingIt) {
     // The end of the range and beyond: past the last pass; before the range: the first.
     EXPECT_EQ(schedule.pass_of_sample(c.samples.last), schedule.pass_count());
     EXPECT_EQ(schedule.pass_of_sample(c.samples.last + 1000), schedule.pass_count());
-    if (c.samples.first > 0) EXPECT_EQ(schedule.pass_of_sample(c.samples.first - 1), 0);
+    if (c.samples.first > 0) {
+      EXPECT_EQ(schedule.pass_of_sample(c.samples.first - 1), 0);
+    }
   }
 }
 
