@@ -4,7 +4,9 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace prism {
@@ -32,6 +34,23 @@ inline float max_component(const Vec3& v) { return glm::max(v.x, glm::max(v.y, v
 /// Index (0, 1, 2) of the largest component of v.
 inline int max_dimension(const Vec3& v) {
   return (v.x >= v.y && v.x >= v.z) ? 0 : (v.y >= v.z ? 1 : 2);
+}
+
+/// std::nextafter(x, +infinity) without the libm call (the hot path of every spawned ray):
+/// the same value for every x, NaN, infinities and both zeros included.
+inline float next_float_up(float x) {
+  if (!(x < kInfinity)) return x;  // +infinity and NaN stay
+  if (x == 0.0f) return std::numeric_limits<float>::denorm_min();
+  const uint32_t bits = std::bit_cast<uint32_t>(x);
+  return std::bit_cast<float>(x > 0.0f ? bits + 1u : bits - 1u);
+}
+
+/// std::nextafter(x, -infinity) without the libm call; see next_float_up().
+inline float next_float_down(float x) {
+  if (!(x > -kInfinity)) return x;  // -infinity and NaN stay
+  if (x == 0.0f) return -std::numeric_limits<float>::denorm_min();
+  const uint32_t bits = std::bit_cast<uint32_t>(x);
+  return std::bit_cast<float>(x > 0.0f ? bits - 1u : bits + 1u);
 }
 
 }  // namespace prism

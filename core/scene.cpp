@@ -127,9 +127,9 @@ Vec3 offset_ray_origin(const Vec3& p, const Vec3& error, const Vec3& geometric_n
   // move at least `distance` along every axis the normal has a component on.
   for (int k = 0; k < 3; ++k) {
     if (n[k] > 0.0f) {
-      origin[k] = std::nextafter(origin[k], kInfinity);
+      origin[k] = next_float_up(origin[k]);
     } else if (n[k] < 0.0f) {
-      origin[k] = std::nextafter(origin[k], -kInfinity);
+      origin[k] = next_float_down(origin[k]);
     }
   }
   return origin;

@@ -25,11 +25,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -64,6 +66,42 @@ Scene one_triangle_scene(Vec3 p0, Vec3 p1, Vec3 p2) {
   scene.geometry.meshes.push_back(mesh);
   scene.geometry.finalize();
   return scene;
+}
+
+// The one-ulp steps of offset_ray_origin(): next_float_up()/down() (core/math.h) are
+// std::nextafter toward +/- infinity bit for bit, on the special values and on random bits.
+TEST(CoreSpawn, NextFloatStepsAreNextafterBitForBit) {
+  const float kMax = std::numeric_limits<float>::max();
+  const float kDenorm = std::numeric_limits<float>::denorm_min();
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               kDenorm,
+                               -kDenorm,
+                               1.0f,
+                               -1.0f,
+                               kMax,
+                               -kMax,
+                               std::numeric_limits<float>::min(),
+                               -std::numeric_limits<float>::min(),
+                               kInfinity,
+                               -kInfinity,
+                               std::numeric_limits<float>::quiet_NaN()};
+  std::mt19937 rng(7);
+  for (int i = 0; i < 200000; ++i) values.push_back(std::bit_cast<float>(uint32_t(rng())));
+  int checked = 0;
+  for (float x : values) {
+    const float up = next_float_up(x), down = next_float_down(x);
+    if (std::isnan(x)) {
+      EXPECT_TRUE(std::isnan(up) && std::isnan(down));
+      continue;
+    }
+    ASSERT_EQ(std::bit_cast<uint32_t>(up), std::bit_cast<uint32_t>(std::nextafter(x, kInfinity)))
+        << x;
+    ASSERT_EQ(std::bit_cast<uint32_t>(down), std::bit_cast<uint32_t>(std::nextafter(x, -kInfinity)))
+        << x;
+    ++checked;
+  }
+  EXPECT_GT(checked, 190000);
 }
 
 TEST(CoreSpawn, OffsetMovesAlongTheNormalToTheRequestedSide) {
