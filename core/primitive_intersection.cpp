@@ -92,7 +92,7 @@ std::optional<PrimitiveHit> intersect_triangle(const WatertightRay& ray, const V
   return triangle_hit_parameters(ray, p0, p1, p2);
 }
 
-std::optional<PrimitiveHit> intersect_sphere(const Ray& ray, const Vec3& center, float radius) {
+std::optional<float> intersect_sphere_t(const Ray& ray, const Vec3& center, float radius) {
   const Vec3 f = ray.origin - center;
   const Vec3& d = ray.direction;
   const float a = glm::dot(d, d);
@@ -106,19 +106,24 @@ std::optional<PrimitiveHit> intersect_sphere(const Ray& ray, const Vec3& center,
   float t0 = c / q;
   float t1 = q / a;
   if (t0 > t1) std::swap(t0, t1);
-  float t;
-  if (t0 >= ray.tmin && t0 <= ray.tmax) {
-    t = t0;
-  } else if (t1 >= ray.tmin && t1 <= ray.tmax) {
-    t = t1;
-  } else {
-    return std::nullopt;
-  }
+  if (t0 >= ray.tmin && t0 <= ray.tmax) return t0;
+  if (t1 >= ray.tmin && t1 <= ray.tmax) return t1;
+  return std::nullopt;
+}
+
+Vec2 sphere_hit_uv(const Ray& ray, float t, const Vec3& center, float radius) {
   const Vec3 local = ray.at(t) - center;
   float phi = std::atan2(local.y, local.x);
   if (phi < 0.0f) phi += 2.0f * kPi;
   const float cos_theta = glm::clamp(local.z / radius, -1.0f, 1.0f);
-  return PrimitiveHit{t, phi / (2.0f * kPi), std::acos(cos_theta) / kPi};
+  return {phi / (2.0f * kPi), std::acos(cos_theta) / kPi};
+}
+
+std::optional<PrimitiveHit> intersect_sphere(const Ray& ray, const Vec3& center, float radius) {
+  const std::optional<float> t = intersect_sphere_t(ray, center, radius);
+  if (!t) return std::nullopt;
+  const Vec2 uv = sphere_hit_uv(ray, *t, center, radius);
+  return PrimitiveHit{*t, uv.x, uv.y};
 }
 
 }  // namespace prism

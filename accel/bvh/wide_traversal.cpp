@@ -13,15 +13,18 @@ bool intersect_sphere_leaf(const WideBvhView& bvh, const Ray& query_ray, uint32_
     // Unused lanes repeat the previous sphere.
     if ((i & 3) != 0 && ids[i] == ids[i - 1]) continue;
     const Sphere& s = bvh.spheres[ids[i]];
-    const std::optional<PrimitiveHit> h = intersect_sphere(ray, s.center, s.radius);
-    if (!h) continue;
+    // t first: a shadow ray needs nothing else, and u, v (two inverse trigonometric
+    // functions) are computed only for a hit that becomes the closest so far.
+    const std::optional<float> t = intersect_sphere_t(ray, s.center, s.radius);
+    if (!t) continue;
     if (any_hit) return true;
-    if (!comes_before(h->t, bvh.sphere_geom_id, ids[i], {hit.t, 0, 0, hit.geom_id, hit.prim_id})) {
+    if (!comes_before(*t, bvh.sphere_geom_id, ids[i], {hit.t, 0, 0, hit.geom_id, hit.prim_id})) {
       continue;
     }
     found = true;
-    ray.tmax = h->t;
-    hit = {h->t, h->u, h->v, bvh.sphere_geom_id, ids[i]};
+    ray.tmax = *t;
+    const Vec2 uv = sphere_hit_uv(ray, *t, s.center, s.radius);
+    hit = {*t, uv.x, uv.y, bvh.sphere_geom_id, ids[i]};
   }
   return found;
 }

@@ -66,7 +66,8 @@ void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
     if (args->valid[i] == 0) continue;
     const Ray ray = packet_ray(args->ray, args->N, i, context->tmin);
     // Embree's convention for "occluded": tfar becomes -inf.
-    if (intersect_sphere(ray, s.center, s.radius)) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+    if (intersect_sphere_t(ray, s.center, s.radius))
+      RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
   }
 }
 
