@@ -2,18 +2,36 @@
 
 namespace prism {
 
+namespace {
+
+/// {cos x, sin x} for |x| <= pi / 4, where the concentric map needs them: Taylor polynomials to
+/// x^10 and x^9, whose truncation error there (below 3e-8 and 3e-9) is under float's rounding.
+/// About a third of the cost of libm's sincosf, which must reduce any argument.
+Vec2 cos_sin_quarter_turn(float x) {
+  const float x2 = x * x;
+  const float s =
+      x * (1.0f + x2 * (-1.0f / 6.0f +
+                        x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f)))));
+  const float c =
+      1.0f +
+      x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f +
+                                                                      x2 * (-1.0f / 3628800.0f)))));
+  return {c, s};
+}
+
+}  // namespace
+
 Vec2 square_to_uniform_disk(Vec2 u) {
   const Vec2 o = 2.0f * u - Vec2(1.0f);
   if (o.x == 0.0f && o.y == 0.0f) return Vec2(0.0f);
-  float r, theta;
+  // Shirley and Chiu's concentric map: the angle is pi / 4 * o.y / o.x from the x axis in the
+  // wedges around it, pi / 2 - pi / 4 * o.x / o.y in those around the y axis (whose cosine
+  // and sine are the sine and cosine of pi / 4 * o.x / o.y).
   if (std::abs(o.x) > std::abs(o.y)) {
-    r = o.x;
-    theta = (kPi / 4.0f) * (o.y / o.x);
-  } else {
-    r = o.y;
-    theta = kPi / 2.0f - (kPi / 4.0f) * (o.x / o.y);
+    return o.x * cos_sin_quarter_turn((kPi / 4.0f) * (o.y / o.x));
   }
-  return r * Vec2(std::cos(theta), std::sin(theta));
+  const Vec2 cs = cos_sin_quarter_turn((kPi / 4.0f) * (o.x / o.y));
+  return o.y * Vec2(cs.y, cs.x);
 }
 
 Vec3 square_to_cosine_hemisphere(Vec2 u) {
