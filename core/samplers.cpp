@@ -40,11 +40,34 @@ uint32_t owen_scramble_reversed(uint32_t x, uint32_t seed) {
   return x;
 }
 
-/// reverse_bits(sobol_dimension1(index)) without a branch per bit: column j of the reversed
-/// generator is row j of Pascal's triangle mod 2 (r_0 = 1, r_j = r_{j-1} ^ (r_{j-1} << 1)).
+/// reverse_bits(sobol_dimension1(index)): the generator is linear over GF(2), so the result is
+/// the XOR of the columns of index's set bits, taken eight bits at a time from tables (column j
+/// of the reversed generator is row j of Pascal's triangle mod 2: r_0 = 1, r_j = r_{j-1} ^
+/// (r_{j-1} << 1)). Sample indices are mostly below 256: one lookup.
+struct SobolDimension1Tables {
+  uint32_t byte[4][256];
+};
+constexpr SobolDimension1Tables make_sobol_dimension1_tables() {
+  SobolDimension1Tables tables{};
+  uint32_t column[32] = {};
+  uint32_t r = 1;
+  for (int j = 0; j < 32; ++j, r ^= r << 1) column[j] = r;
+  for (int k = 0; k < 4; ++k) {
+    for (uint32_t v = 0; v < 256; ++v) {
+      uint32_t result = 0;
+      for (int bit = 0; bit < 8; ++bit) {
+        if ((v >> bit) & 1u) result ^= column[8 * k + bit];
+      }
+      tables.byte[k][v] = result;
+    }
+  }
+  return tables;
+}
+constexpr SobolDimension1Tables kSobolDimension1Tables = make_sobol_dimension1_tables();
+
 uint32_t sobol_dimension1_reversed(uint32_t index) {
-  uint32_t result = 0;
-  for (uint32_t r = 1; index != 0; index >>= 1, r ^= r << 1) result ^= r & (0u - (index & 1u));
+  uint32_t result = kSobolDimension1Tables.byte[0][index & 0xffu];
+  for (int k = 1; (index >>= 8) != 0; ++k) result ^= kSobolDimension1Tables.byte[k][index & 0xffu];
   return result;
 }
 
