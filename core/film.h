@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "core/huge_page_allocator.h"
 #include "core/image.h"
 #include "core/math.h"
 
@@ -155,7 +156,7 @@ class Film {
 
   int width_, height_;
   PixelRect window_;
-  std::vector<FilmPixel> pixels_;
+  std::vector<FilmPixel, HugePageAllocator<FilmPixel>> pixels_;  ///< 192 bytes a pixel
   std::atomic<uint64_t> non_finite_{0};
 };
 
