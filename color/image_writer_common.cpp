@@ -62,7 +62,7 @@ void write_atomically(const fs::path& target, const std::string& format,
   temp.commit();
 }
 
-void check_finite(const std::vector<float>& values, const fs::path& path) {
+void check_finite(std::span<const float> values, const fs::path& path) {
   const size_t bad =
       std::count_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); });
   if (bad > 0) {

@@ -7,6 +7,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,7 @@ ExrImage prepare_exr(const std::filesystem::path& path, const Image& image,
 
 /// Throws Error(kInternal) naming `path` when `values` holds a NaN or Inf: the film drops them,
 /// so one here is a bug to report, not a value to patch.
-void check_finite(const std::vector<float>& values, const std::filesystem::path& path);
+void check_finite(std::span<const float> values, const std::filesystem::path& path);
 
 /// Adds `metadata` (provenance) and the pipeline's config, working space, display, view and look
 /// (prism:ocioConfig, ...) to the header.

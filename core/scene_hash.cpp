@@ -17,8 +17,8 @@ class Hasher {
     static_assert(std::is_trivially_copyable_v<T>);
     hash_ = fnv1a64(std::as_bytes(std::span<const T>(&value, 1)), hash_);
   }
-  template <typename T>
-  void add_all(const std::vector<T>& values) {
+  template <typename T, typename Allocator>
+  void add_all(const std::vector<T, Allocator>& values) {
     static_assert(std::is_trivially_copyable_v<T>);
     add(uint64_t(values.size()));
     hash_ = fnv1a64(std::as_bytes(std::span<const T>(values)), hash_);

@@ -57,7 +57,8 @@ TEST(AppEnvironmentMap, PfmKeepsItsValuesAndWarnsAboutItsEncodingLabel) {
   ASSERT_EQ(map.image.width, 4);
   ASSERT_EQ(map.image.height, 2);
   ASSERT_EQ(map.image.channel_names, (std::vector<std::string>{"R", "G", "B"}));
-  EXPECT_EQ(map.image.pixels, values);  // top row first, no conversion
+  EXPECT_EQ(std::vector<float>(map.image.pixels.begin(), map.image.pixels.end()),
+            values);  // top row first, no conversion
   // OpenImageIO labels PNM files "Rec709" (an encoded space the config does not have): the
   // values are used as they are, with a warning; the map is 2:1, so there is only that one.
   ASSERT_EQ(map.warnings.size(), 1u);

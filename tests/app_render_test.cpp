@@ -75,7 +75,7 @@ TEST(AppRender, PngAndExrFlagsAddTheOtherFormatBeside) {
 TEST(AppRender, ThreadCountDoesNotChangePixels) {
   const TestDirs dirs("app_threads");
   const std::string scene = dirs.scene("tiny.dae", kTinyCollada);
-  std::vector<std::vector<float>> pixels;
+  std::vector<ImagePixels> pixels;
   for (const char* threads : {"1", "2"}) {
     const auto out = dirs.out / (std::string("t") + threads + ".exr");
     const auto r = run_prism({"render", scene, "-r", "40", "30", "-s", "3", "--seed", "11",
@@ -90,7 +90,7 @@ TEST(AppRender, ThreadCountDoesNotChangePixels) {
 }
 
 /// R, G, B, AOV and variance values of an EXR prism wrote (written as float: exact).
-std::vector<float> exr_pixels(const std::filesystem::path& path) {
+ImagePixels exr_pixels(const std::filesystem::path& path) {
   return read_image_file(path).image.pixels;
 }
 
@@ -118,7 +118,7 @@ TEST(AppRender, IntegratorFlagsAreAliasesOfItsParameters) {
     ASSERT_EQ(r.exit_code, 0) << output << ": " << r.err;
     EXPECT_TRUE(r.err.empty()) << output << ": " << r.err;
   }
-  const std::vector<float> flag = exr_pixels(dirs.out / "flag.exr");
+  const ImagePixels flag = exr_pixels(dirs.out / "flag.exr");
   ASSERT_FALSE(flag.empty());
   EXPECT_TRUE(flag == exr_pixels(dirs.out / "set.exr")) << "-m 3 differs from path.max_depth=3";
   EXPECT_TRUE(flag == exr_pixels(dirs.out / "both.exr"));
@@ -175,7 +175,7 @@ TEST(AppRender, TwoSidedEmittersFlagIsAnAliasOfItsParameter) {
     ASSERT_EQ(r.exit_code, 0) << output << ": " << r.err;
     EXPECT_EQ(r.err, "") << output;  // ignored by ao, silently, like -l
   }
-  const std::vector<float> flag = exr_pixels(dirs.out / "flag.exr");
+  const ImagePixels flag = exr_pixels(dirs.out / "flag.exr");
   EXPECT_TRUE(flag == exr_pixels(dirs.out / "set.exr"));
   EXPECT_FALSE(flag == exr_pixels(dirs.out / "one.exr")) << "the back of the light lit nothing";
   expect_one_line_error(
@@ -255,7 +255,7 @@ TEST(AppRender, SceneFileMaxDepthIsTheIntegratorsUnlessTheCommandLineGivesOne) {
   const std::string original = default_scene_path().string();
   EXPECT_TRUE(render(shallow, "scene.exr", {}) == render(original, "m1.exr", {"-m", "1"}));
   // The command line overrides the scene file, by flag or by --set.
-  const std::vector<float> m3 = render(original, "m3.exr", {"-m", "3"});
+  const ImagePixels m3 = render(original, "m3.exr", {"-m", "3"});
   EXPECT_TRUE(render(shallow, "flag.exr", {"-m", "3"}) == m3);
   EXPECT_TRUE(render(shallow, "set.exr", {"--set", "path.max_depth=3"}) == m3);
   EXPECT_EQ(read_image_file(dirs.out / "scene.exr").attribute("prism:max_depth"), "1");
@@ -271,7 +271,7 @@ TEST(AppRender, HomeworkFileDefectsWarnAndRenderAsTheHomework) {
   const std::string intact = dirs.scene("intact.dae", kTinyCollada);
   const std::string text = replaced(kTinyCollada, full, shortened);
   const std::string defective = dirs.scene("short.dae", text);
-  std::vector<std::vector<float>> pixels;
+  std::vector<ImagePixels> pixels;
   for (const std::string& scene : {intact, defective}) {
     const auto out = dirs.out / (std::filesystem::path(scene).stem().string() + ".exr");
     const auto r = run_prism({"render", scene, "-r", "32", "24", "-s", "2", "-q", "--exr-type",

@@ -300,7 +300,7 @@ TEST(ColorPipeline, OutputConversionTouchesColourLayersOnly) {
       "N.Y", "N.Z", "Z", "sampleCount.Y", "variance.R", "variance.G", "variance.B"};
   image.pixels = {0.5f, 0.2f, 0.1f, 0.9f,  0.1f,  0.0f,  0.0f,
                   1.0f, 0.0f, 7.5f, 64.0f, 0.01f, 0.02f, 0.03f};
-  const std::vector<float> before = image.pixels;
+  const ImagePixels before = image.pixels;
   pipeline.working_to_output(image);
   const Rgb beauty = mul(kRec709ToAcescg, {0.5f, 0.2f, 0.1f});
   const Rgb albedo = mul(kRec709ToAcescg, {0.9f, 0.1f, 0.0f});
