@@ -1,6 +1,7 @@
 #pragma once
 
-// An allocator for the few big arrays of a render (the film's exact sums: 192 bytes a pixel).
+// An allocator for the few big arrays of a render: the film's exact sums (192 bytes a pixel)
+// and the pixels of the images it resolves to (core/film.h, core/image.h).
 
 #include <sys/mman.h>
 

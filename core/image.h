@@ -7,13 +7,13 @@
 
 namespace prism {
 
+/// The storage of Image::pixels.
+using ImagePixels = std::vector<float, HugePageAllocator<float>>;
+
 /// A float image with named, interleaved channels ("R", "G", "B", "albedo.R", "Z", ...).
 /// Row 0 is the top row. Plain data handed from the film to the writers. An image may be a
 /// window of a larger one (a crop): (x, y) is the place of its top-left pixel in the full
 /// full_width x full_height image (EXR's data window inside its display window).
-/// The storage of Image::pixels.
-using ImagePixels = std::vector<float, HugePageAllocator<float>>;
-
 struct Image {
   int width = 0;
   int height = 0;

@@ -40,10 +40,10 @@ uint32_t owen_scramble_reversed(uint32_t x, uint32_t seed) {
   return x;
 }
 
-/// reverse_bits(sobol_dimension1(index)): the generator is linear over GF(2), so the result is
-/// the XOR of the columns of index's set bits, taken eight bits at a time from tables (column j
-/// of the reversed generator is row j of Pascal's triangle mod 2: r_0 = 1, r_j = r_{j-1} ^
-/// (r_{j-1} << 1)). Sample indices are mostly below 256: one lookup.
+/// reverse_bits(sobol_dimension1(index)), and through it sobol_dimension1: the generator is linear
+/// over GF(2), so the result is the XOR of the columns of index's set bits, taken eight bits at a
+/// time from tables (column j of the reversed generator is row j of Pascal's triangle mod 2: r_0 =
+/// 1, r_j = r_{j-1} ^ (r_{j-1} << 1)). Sample indices are mostly below 256: one lookup.
 struct SobolDimension1Tables {
   uint32_t byte[4][256];
 };
@@ -106,16 +106,7 @@ uint32_t permutation_element(uint32_t index, uint32_t count, uint64_t seed) {
 
 uint32_t sobol_dimension0(uint32_t index) { return reverse_bits(index); }
 
-uint32_t sobol_dimension1(uint32_t index) {
-  // Direction numbers of the second Sobol dimension (primitive polynomial x + 1): column j of
-  // the generator matrix is v_j = v_{j-1} ^ (v_{j-1} >> 1), v_0 = 2^31.
-  uint32_t result = 0;
-  uint32_t v = 0x80000000u;
-  for (; index != 0; index >>= 1, v ^= v >> 1) {
-    if (index & 1u) result ^= v;
-  }
-  return result;
-}
+uint32_t sobol_dimension1(uint32_t index) { return reverse_bits(sobol_dimension1_reversed(index)); }
 
 uint32_t owen_scramble(uint32_t v, uint32_t seed) {
   // After reversal, the most significant bit of the value is the least significant bit of x.

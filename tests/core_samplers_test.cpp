@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <vector>
 
 #include "core/error.h"
@@ -211,10 +212,26 @@ TEST(CoreSamplers, SobolDimensionsPastTheStratifiedOnesAreHashed) {
   EXPECT_EQ(from_registry->get_2d(), hashed[3]);
 }
 
-TEST(CoreSamplers, SobolDimension1StartsAsTheSobolSequence) {
+TEST(CoreSamplers, SobolDimension1IsTheSobolSequence) {
   // Indices in binary order (not Gray code): v1 = 1/2, v2 = 3/4, v3 = 5/8 and their xors.
   const double expected[] = {0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875};
   for (uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_dimension1(i) / 4294967296.0, expected[i]);
+  // The sampler's byte tables against the definition, a bit at a time: direction numbers of the
+  // primitive polynomial x + 1, v_j = v_{j-1} ^ (v_{j-1} >> 1), v_0 = 2^31. Every index below
+  // 2^16 and random ones up to 2^32, so that each of the four tables is read.
+  const auto by_definition = [](uint32_t index) {
+    uint32_t result = 0;
+    for (uint32_t v = 0x80000000u; index != 0; index >>= 1, v ^= v >> 1) {
+      if (index & 1u) result ^= v;
+    }
+    return result;
+  };
+  for (uint32_t i = 0; i < (1u << 16); ++i) ASSERT_EQ(sobol_dimension1(i), by_definition(i)) << i;
+  std::mt19937 rng(3);
+  for (int k = 0; k < 100000; ++k) {
+    const uint32_t i = uint32_t(rng());
+    ASSERT_EQ(sobol_dimension1(i), by_definition(i)) << i;
+  }
 }
 
 TEST(CoreSamplers, PermutationElementIsABijection) {
