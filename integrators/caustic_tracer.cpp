@@ -157,7 +157,7 @@ void CausticTracer::trace(uint32_t sample, uint32_t first, uint32_t last, std::v
           connect(si, bsdf, ray, beta, path, out);
           // Camera paths reach it with one bounce more: within max_depth?
           if (bounces < max_specular_bounces_) {
-            vertices.push_back(CausticVertex{si, -glm::normalize(ray.direction), beta});
+            vertices.push_back(CausticVertex{si, -glm::normalize(ray.direction), beta, bounces});
           }
         }
         break;

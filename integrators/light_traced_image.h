@@ -27,8 +27,9 @@ struct Splat {
 /// is not purely specular, and the light arriving there.
 struct CausticVertex {
   SurfaceInteraction si;
-  Vec3 to_light{0.0f};  ///< unit, toward the path's previous vertex
-  Rgb beta{0.0f};       ///< the path's throughput arriving at si (one path's, not divided)
+  Vec3 to_light{0.0f};       ///< unit, toward the path's previous vertex
+  Rgb beta{0.0f};            ///< the path's throughput arriving at si (one path's, not divided)
+  int specular_bounces = 0;  ///< purely specular surfaces between the light and si
 };
 
 /// What the light paths of one sample index left: the radiance they deposited per pixel (a

@@ -71,8 +71,10 @@ class PathEstimator final : public PixelEstimator {
                const LightTracedSample* traced) const;
   /// Light of the caustic vertex `v` of `light` (LightTracedSample::choose_vertex()) reflected
   /// at the camera's first hit `sp` toward the camera, as an estimate of what all of its paths
-  /// bring there from vertices at least connection_radius_ away.
-  Rgb connect_caustic_vertex(const ShadingPoint& sp, const LightTracedSample& light,
+  /// bring there from vertices at least connection_radius_ away. `bounces`: the camera path's
+  /// bounces before `sp` (its specular chain); vertices whose whole path would pass max_depth
+  /// bring nothing, as camera paths that long stop first.
+  Rgb connect_caustic_vertex(const ShadingPoint& sp, int bounces, const LightTracedSample& light,
                              const CausticVertex& v) const;
 
   const RenderContext& context_;
@@ -107,8 +109,12 @@ Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) c
   return sum / float(n);
 }
 
-Rgb PathEstimator::connect_caustic_vertex(const ShadingPoint& sp, const LightTracedSample& light,
+Rgb PathEstimator::connect_caustic_vertex(const ShadingPoint& sp, int bounces,
+                                          const LightTracedSample& light,
                                           const CausticVertex& v) const {
+  // The camera path would find the light after bounces + 2 + v.specular_bounces bounces (the
+  // light tracer keeps only vertices within max_depth for bounces = 0).
+  if (bounces + 2 + v.specular_bounces > settings_.max_depth) return Rgb(0.0f);
   const Vec3 d = v.si.position - sp.si.position;
   const float distance = glm::length(d);
   // Nearer pairs are the camera paths' (li_paths()).
@@ -166,7 +172,10 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
   // surface at least connection_radius_ away whose sampled lobe is not delta
   // (kFromSecondHit), then through purely specular surfaces only (kConnectedCaustic: the
   // connection to a caustic vertex). Emitters it covers, found in kCaustic or
-  // kConnectedCaustic, are its.
+  // kConnectedCaustic, are its. The "first hit" is the first surface whose BSDF is not purely
+  // specular: one seen in a mirror or through glass connects to caustic vertices too (its
+  // connection carries the specular chain's throughput), but the caustic seen directly there
+  // stays the camera path's, since the light tracer reaches the camera only in a straight line.
   enum class Caustic {
     kNone,
     kFromFirstHit,
@@ -175,6 +184,9 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
     kConnectedCaustic
   } caustic = Caustic::kNone;
   Vec3 first_hit{0.0f};
+  int first_hit_bounces = -1;          // bounces before the first hit; -1 until it is found
+  bool specular_prefix = true;         // every surface before this one was purely specular
+  bool seen_through_specular = false;  // the first hit is seen in a mirror or through glass
   for (int bounces = 0;; ++bounces) {
     const std::optional<Hit> hit = context.accel.intersect(ray);
     if (!hit) {
@@ -221,7 +233,7 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
       Rgb direct;
       // The caustic vertex the first hit connects to, chosen first so that it loads meanwhile.
       const CausticVertex* vertex =
-          traced && bounces == 0 ? traced->choose_vertex(sampler.get_1d()) : nullptr;
+          traced && specular_prefix ? traced->choose_vertex(sampler.get_1d()) : nullptr;
       if (settings_.mis) {
         direct = sample_lights_mis(sp, sampler);
       } else if (settings_.light_transport.hemisphere) {
@@ -230,7 +242,9 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
         direct = estimate_direct_lights(sp, sampler, context, shading, light_samples);
       }
       add(beta * direct, bounces + 1);
-      if (vertex) add(connect_caustic_vertex(sp, *traced, *vertex), 2);
+      if (vertex) {
+        add(beta * connect_caustic_vertex(sp, bounces, *traced, *vertex), bounces + 2);
+      }
     }
 
     const float u_lobe = sampler.get_1d();
@@ -240,14 +254,20 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
     if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
     specular = bs->is_delta();
     if (traced) {
-      if (bounces == 0) {
+      if (specular_prefix && bsdf.is_delta()) {
+        seen_through_specular = true;  // still before the first hit
+      } else if (specular_prefix) {
         caustic = specular ? Caustic::kNone : Caustic::kFromFirstHit;
         first_hit = si.position;
+        first_hit_bounces = bounces;
+        specular_prefix = false;
       } else if (bsdf.is_delta()) {
-        if (caustic == Caustic::kFromFirstHit) caustic = Caustic::kCaustic;
+        if (caustic == Caustic::kFromFirstHit) {
+          caustic = seen_through_specular ? Caustic::kNone : Caustic::kCaustic;
+        }
         if (caustic == Caustic::kFromSecondHit) caustic = Caustic::kConnectedCaustic;
-      } else if (caustic == Caustic::kFromFirstHit && bounces == 1 && !specular &&
-                 glm::length(si.position - first_hit) >= connection_radius_) {
+      } else if (caustic == Caustic::kFromFirstHit && bounces == first_hit_bounces + 1 &&
+                 !specular && glm::length(si.position - first_hit) >= connection_radius_) {
         caustic = Caustic::kFromSecondHit;
       } else {
         caustic = Caustic::kNone;

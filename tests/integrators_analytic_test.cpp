@@ -393,6 +393,23 @@ Scene caustic_canopy() {
   return scene;
 }
 
+/// caustic_canopy() seen in a mirror: a mirror floor beside the ball, under the panel, and the
+/// camera looking down into it, so every pixel sees the panel's underside (or nothing) by
+/// reflection. The camera paths' first hit that is not purely specular is then the panel, seen
+/// in the mirror, and connects to the floor's caustic vertices through it; the light that the
+/// mirror itself reflects onto the panel is a caustic seen in a mirror, which stays the camera
+/// paths'.
+Scene caustic_canopy_in_mirror() {
+  Scene scene = caustic_canopy();
+  scene.source = "caustic canopy in a mirror (built in code)";
+  const uint32_t mirror = test::add_material(scene, MaterialType::kMirror, Rgb(1.0f), "mirror");
+  scene.geometry.meshes.push_back(test::quad("mirror", {0.7f, 0.2f, -1.0f}, {0.7f, 0.2f, 1.0f},
+                                             {2.2f, 0.2f, 1.0f}, {2.2f, 0.2f, -1.0f}, mirror));
+  test::aim_camera_and_finish(scene, {1.45f, 1.5f, 1.3f}, {1.45f, 0.2f, 0.5f}, {0.0f, 1.0f, 0.0f},
+                              30.0f);
+  return scene;
+}
+
 TEST(IntegratorsAnalytic, LightTracedCausticsMatchThePathTracersOwn) {
   // path.caustics=false finds the caustics of the ball with BSDF-sampled camera paths only; by
   // default they are light-traced instead. Both are unbiased: the images agree, region by
@@ -421,6 +438,10 @@ TEST(IntegratorsAnalytic, LightTracedCausticsMatchThePathTracersOwn) {
   cases.push_back({MaterialType::kGlass, cornell(MaterialType::kGlass), samples});
   // lit by caustics reached only through a bounce: noisier without them
   if (!test::kSanitizedBuild) cases.push_back({MaterialType::kGlass, caustic_canopy(), 8192});
+  // the same, seen in a mirror: connections from a first hit behind a specular surface
+  if (!test::kSanitizedBuild) {
+    cases.push_back({MaterialType::kGlass, caustic_canopy_in_mirror(), 8192});
+  }
   for (const auto& [material, scene, spp] : cases) {
     TestRender settings;
     settings.width = settings.height = 32;
