@@ -184,9 +184,9 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
     kConnectedCaustic
   } caustic = Caustic::kNone;
   Vec3 first_hit{0.0f};
-  int first_hit_bounces = -1;          // bounces before the first hit; -1 until it is found
-  bool specular_prefix = true;         // every surface before this one was purely specular
-  bool seen_through_specular = false;  // the first hit is seen in a mirror or through glass
+  // Bounces before the first hit: -1 until it is found, above 0 when it is seen in a mirror or
+  // through glass.
+  int first_hit_bounces = -1;
   for (int bounces = 0;; ++bounces) {
     const std::optional<Hit> hit = context.accel.intersect(ray);
     if (!hit) {
@@ -233,7 +233,7 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
       Rgb direct;
       // The caustic vertex the first hit connects to, chosen first so that it loads meanwhile.
       const CausticVertex* vertex =
-          traced && specular_prefix ? traced->choose_vertex(sampler.get_1d()) : nullptr;
+          traced && first_hit_bounces < 0 ? traced->choose_vertex(sampler.get_1d()) : nullptr;
       if (settings_.mis) {
         direct = sample_lights_mis(sp, sampler);
       } else if (settings_.light_transport.hemisphere) {
@@ -254,16 +254,15 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
     if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
     specular = bs->is_delta();
     if (traced) {
-      if (specular_prefix && bsdf.is_delta()) {
-        seen_through_specular = true;  // still before the first hit
-      } else if (specular_prefix) {
-        caustic = specular ? Caustic::kNone : Caustic::kFromFirstHit;
-        first_hit = si.position;
-        first_hit_bounces = bounces;
-        specular_prefix = false;
+      if (first_hit_bounces < 0) {
+        if (!bsdf.is_delta()) {  // else still before the first hit
+          caustic = specular ? Caustic::kNone : Caustic::kFromFirstHit;
+          first_hit = si.position;
+          first_hit_bounces = bounces;
+        }
       } else if (bsdf.is_delta()) {
         if (caustic == Caustic::kFromFirstHit) {
-          caustic = seen_through_specular ? Caustic::kNone : Caustic::kCaustic;
+          caustic = first_hit_bounces > 0 ? Caustic::kNone : Caustic::kCaustic;
         }
         if (caustic == Caustic::kFromSecondHit) caustic = Caustic::kConnectedCaustic;
       } else if (caustic == Caustic::kFromFirstHit && bounces == first_hit_bounces + 1 &&
