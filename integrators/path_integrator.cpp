@@ -18,6 +18,7 @@ PathIntegrator::Settings::Settings(const ParamSet& params)
       rr_probability(float(params.get_float("path.rr_probability", 0.0, 0.0, 1.0))),
       rr_depth(int(params.get_int("path.rr_depth", rr_probability > 0.0f ? 1 : 3, 0, 1 << 20))),
       rr_sqrt(params.get_bool("path.rr_sqrt", true)),
+      rr_threshold(float(params.get_float("path.rr_threshold", kDefaultRrThreshold, 1e-6, 1.0))),
       caustics(params.get_bool("path.caustics", true)),
       caustic_paths(params.get_float("path.caustic_paths", kDefaultCausticPaths, 0x1p-20, 64.0)),
       caustic_radius(params.get_float("path.caustic_radius", kDefaultCausticRadius, 0.0, 1.0)) {}
@@ -280,7 +281,7 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
     if (settings_.russian_roulette && bounces + 1 >= settings_.rr_depth) {
       float q = settings_.rr_probability;
       if (!(q > 0.0f)) {
-        const float m = max_component(beta * eta_scale);
+        const float m = max_component(beta * eta_scale) / settings_.rr_threshold;
         q = std::min(1.0f, settings_.rr_sqrt ? std::sqrt(m) : m);
       }
       if (q < 1.0f) {

@@ -16,10 +16,12 @@ namespace prism {
 ///   max_depth (light that scattered exactly max_depth times).
 /// - rr (default true), rr_depth (default 3, or 1 with rr_probability), rr_probability
 ///   (default 0: continuation probability from the path throughput; in (0,1]: that fixed
-///   continuation probability), rr_sqrt (default true: the continuation probability from the
-///   throughput is min(1, sqrt(max component)), as Cycles does; false: min(1, max component),
-///   which ends more paths: about 35% more variance for 6% less work in the Cornell boxes,
-///   docs/PERFORMANCE.md).
+///   continuation probability), rr_threshold (default kDefaultRrThreshold, in [1e-6, 1]) and
+///   rr_sqrt (default true): the continuation probability from the throughput is
+///   min(1, sqrt(max component / rr_threshold)), so no path ends while its throughput is at
+///   least rr_threshold (rr_threshold 1 is Cycles' rule); rr_sqrt false: min(1, max component /
+///   rr_threshold), which ends more paths. Ending fewer costs work and saves variance; the
+///   defaults are the most efficient measured on the Cornell boxes (docs/PERFORMANCE.md).
 /// - caustics (default true): caustics seen directly (light from an emissive mesh or sphere,
 ///   off one or more purely specular surfaces, onto the camera's first hit) are light-traced
 ///   (CausticTracer) instead of left to the rare BSDF-sampled camera path that finds them;
@@ -49,12 +51,14 @@ class PathIntegrator final : public PixelIntegrator {
     float rr_probability;
     int rr_depth;
     bool rr_sqrt;
+    float rr_threshold;
     bool caustics;
     double caustic_paths;
     double caustic_radius;
   };
 
   static constexpr double kDefaultCausticPaths = 0.02;
+  static constexpr double kDefaultRrThreshold = 0.25;
   static constexpr double kDefaultCausticRadius = 0.05;
 
   explicit PathIntegrator(const ParamSet& params);

@@ -306,7 +306,8 @@ TEST(IntegratorsAnalytic, RussianRouletteAndMisAreUnbiased) {
   uint64_t seed = 50;
   for (const Variant v :
        {Variant{"path.rr", "false"}, Variant{"path.mis", "false"},
-        Variant{"path.rr_probability", "0.6"}, Variant{"path.rr_sqrt", "false"}}) {
+        Variant{"path.rr_probability", "0.6"}, Variant{"path.rr_sqrt", "false"},
+        Variant{"path.rr_threshold", "1"}, Variant{"path.rr_threshold", "0.02"}}) {
     ParamSet params;
     params.set(v.key, v.value);
     TestRender s = settings;

@@ -38,6 +38,11 @@ TEST(IntegratorsIntegrator, RegistryListsEveryIntegrator) {
   ParamSet bad_rr;
   bad_rr.set("path.rr_probability", "1.5");
   EXPECT_THROW(registry.create("path", bad_rr), Error);
+  for (const char* threshold : {"0", "-0.5", "1.5", "nan"}) {
+    ParamSet bad_threshold;
+    bad_threshold.set("path.rr_threshold", threshold);
+    EXPECT_THROW(registry.create("path", bad_threshold), Error) << threshold;
+  }
 }
 
 TEST(IntegratorsIntegrator, FlagAliasesReachTheIntegratorsThatReadThem) {
