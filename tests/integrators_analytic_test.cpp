@@ -292,6 +292,27 @@ TEST(IntegratorsAnalytic, SumOfSingleBouncesIsTheAccumulatedImage) {
   test::expect_same_mean(accumulated, sum, 4.5, "sum of bounces 0..3 vs accumulated");
 }
 
+/// The roulette's threshold decides which paths it may end: with a threshold far below any
+/// throughput these short paths reach, no path is ended and no sample value is drawn for the
+/// roulette, so the image is the one without roulette bit for bit; the old rule (threshold 1)
+/// ends paths and gives another image.
+TEST(IntegratorsAnalytic, RussianRouletteSparesPathsAboveItsThreshold) {
+  const Scene scene = test::cornell_box({.spheres = true});
+  TestRender settings;
+  settings.spp = 8;
+  settings.max_depth = 6;
+  settings.sampler = "sobol";
+  const auto render = [&](const char* key, const char* value) {
+    ParamSet params;
+    params.set(key, value);
+    return test::render_scene(scene, "path", params, settings);
+  };
+  const Image without = render("path.rr", "false");
+  EXPECT_TRUE(render("path.rr_threshold", "1e-6").pixels == without.pixels);
+  EXPECT_FALSE(render("path.rr_threshold", "1").pixels == without.pixels);
+  EXPECT_FALSE(render("path.rr_threshold", "0.25").pixels == without.pixels);
+}
+
 TEST(IntegratorsAnalytic, RussianRouletteAndMisAreUnbiased) {
   const Scene scene = test::cornell_box(
       {.spheres = true, .sphere_material = MaterialType::kMicrofacet, .camera_below_light = true});
