@@ -21,6 +21,9 @@ class Sampler {
   virtual float get_1d() = 0;
   /// The next two dimensions' values in [0, 1)^2.
   virtual Vec2 get_2d() = 0;
+  /// Passes over the next `count` dimensions without computing their values: the dimensions
+  /// after them get the values they would have had (a pinhole camera's lens pair).
+  virtual void skip_dimensions(uint32_t count) = 0;
   virtual std::unique_ptr<Sampler> clone() const = 0;
   /// Tells the sampler how many samples per pixel the render takes (stratified samplers size
   /// their strata from it; sample indices beyond it stay valid). Call before the first
@@ -36,6 +39,7 @@ class IndependentSampler final : public Sampler {
   void start_pixel_sample(glm::ivec2 pixel, uint32_t index) override;
   float get_1d() override;
   Vec2 get_2d() override;
+  void skip_dimensions(uint32_t count) override { dimension_ += count; }
   std::unique_ptr<Sampler> clone() const override;
 
  private:

@@ -21,6 +21,7 @@ class JitteredSampler final : public Sampler {
   void start_pixel_sample(glm::ivec2 pixel, uint32_t index) override;
   float get_1d() override;
   Vec2 get_2d() override;
+  void skip_dimensions(uint32_t count) override { dimension_ += count; }
   std::unique_ptr<Sampler> clone() const override;
   void set_sample_count(int samples_per_pixel) override;
 
@@ -54,6 +55,7 @@ class SobolSampler final : public Sampler {
   void start_pixel_sample(glm::ivec2 pixel, uint32_t index) override;
   float get_1d() override;
   Vec2 get_2d() override;
+  void skip_dimensions(uint32_t count) override { dimension_ += count; }
   std::unique_ptr<Sampler> clone() const override;
   void set_sample_count(int samples_per_pixel) override;
 

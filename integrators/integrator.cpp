@@ -35,6 +35,9 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
   // Adaptive sampling may stop after any batch: the sampler stratifies each batch of samples
   // on its own, so that every prefix the stopping rule can choose is well distributed.
   sampler->set_sample_count(batch > 0 ? std::min(batch, spp) : spp);
+  // A pinhole camera reads no lens sample: its two dimensions are skipped, not computed (the
+  // path's dimensions stay where they are with a lens).
+  const bool pinhole = !(context.camera.lens_radius > 0.0f);
   // The light-traced images of this range's sample indices, fetched when first needed (each
   // pixel of the tile runs through the range).
   const LightTracedImage* light_traced = estimator_->light_traced_image();
@@ -50,7 +53,12 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
            ++s) {
         sampler->start_pixel_sample(pixel, s);
         const Vec2 film_position = (Vec2(pixel) + sampler->get_2d()) / film_size;
-        const Vec2 lens = sampler->get_2d();
+        Vec2 lens(0.0f);
+        if (pinhole) {
+          sampler->skip_dimensions(2);
+        } else {
+          lens = sampler->get_2d();
+        }
         const Ray ray = camera.generate_ray(film_position, lens);
         AovSample aovs;
         Rgb radiance;
