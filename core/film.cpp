@@ -67,6 +67,12 @@ Film& Film::operator=(Film&& other) noexcept {
 void Film::add_sample(glm::ivec2 p, const Rgb& radiance, const AovSample& aovs) {
   FilmPixel& s = pixel(p);
   ++s.samples;
+  // A sample that brings nothing (a camera ray that left the scene): every sum stays as it is,
+  // as it would adding zeros, without the conversions.
+  if (radiance == Rgb(0.0f) && aovs.albedo == Rgb(0.0f) && aovs.normal == Vec3(0.0f) &&
+      aovs.depth == 0.0f) {
+    return;
+  }
   if (!is_finite(radiance)) {
     non_finite_.fetch_add(1, std::memory_order_relaxed);
   } else {
