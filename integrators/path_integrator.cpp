@@ -191,8 +191,10 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
   for (int bounces = 0;; ++bounces) {
     const std::optional<Hit> hit = context.accel.intersect(ray);
     if (!hit) {
+      const auto& infinite_lights = shading.lights.infinite_lights();
+      if (infinite_lights.empty()) break;
       const Vec3 w = glm::normalize(ray.direction);
-      for (const LightSource* light : shading.lights.infinite_lights()) {
+      for (const LightSource* light : infinite_lights) {
         const Rgb le = light->le_escaped(w);
         if (max_component(le) <= 0.0f) continue;
         if (specular) {
