@@ -195,6 +195,26 @@ TEST(IntegratorsLights, TriangleSolidAngle) {
   EXPECT_NEAR(triangle_solid_angle(a, b, a), 0.0f, 1e-6f);  // degenerate
 }
 
+TEST(IntegratorsLights, Atan2OfNonNegativeYMatchesLibm) {
+  // Every octant boundary and a dense sweep of angles and magnitudes, in float.
+  float worst = 0.0f;
+  for (int i = 0; i <= 20000; ++i) {
+    const double angle = kPi * double(i) / 20000.0;
+    for (const double radius : {1e-30, 1e-3, 1.0, 7.5, 1e20}) {
+      const float y = std::max(0.0f, float(radius * std::sin(angle)));
+      const float x = float(radius * std::cos(angle));
+      worst = std::max(worst, std::abs(atan2_nonnegative_y(y, x) - std::atan2(y, x)));
+    }
+  }
+  EXPECT_LE(worst, 2.5e-7f);
+  EXPECT_EQ(atan2_nonnegative_y(0.0f, 0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(atan2_nonnegative_y(0.0f, -2.0f), kPi);
+  EXPECT_FLOAT_EQ(atan2_nonnegative_y(3.0f, 0.0f), 0.5f * kPi);
+  EXPECT_FLOAT_EQ(atan2_nonnegative_y(std::numeric_limits<float>::infinity(), 1.0f), 0.5f * kPi);
+  EXPECT_TRUE(std::isnan(atan2_nonnegative_y(std::nanf(""), 1.0f)));
+  EXPECT_TRUE(std::isnan(atan2_nonnegative_y(1.0f, std::nanf(""))));
+}
+
 TEST(IntegratorsLights, SphericalTriangleSamplingMatchesPdf) {
   // Triangles subtending large and small solid angles, one covering almost a hemisphere.
   const Vec3 triangles[][3] = {{{-1.0f, -1.0f, 1.0f}, {1.5f, -0.5f, 1.0f}, {0.0f, 1.0f, 1.0f}},
