@@ -63,6 +63,26 @@ TEST(CoreSamplers, ValuesArePureFunctionsInUnitInterval) {
   }
 }
 
+TEST(CoreSamplers, SkippedDimensionsLeaveTheLaterOnesAsTheyWere) {
+  for (const char* name : {"independent", "jittered", "sobol"}) {
+    SCOPED_TRACE(name);
+    auto read = create_sampler(name, 7);
+    read->set_sample_count(16);
+    auto skip = read->clone();
+    for (uint32_t i = 0; i < 20; ++i) {
+      read->start_pixel_sample({2, 9}, i);
+      skip->start_pixel_sample({2, 9}, i);
+      // Skips within and across the Sobol sampler's 16 stratified dimensions.
+      for (const uint32_t count : {2u, 1u, 3u, 12u, 2u}) {
+        for (uint32_t k = 0; k < count; ++k) read->get_1d();
+        skip->skip_dimensions(count);
+        const Vec2 expected = read->get_2d();
+        ASSERT_EQ(skip->get_2d(), expected) << "sample " << i << ", after skipping " << count;
+      }
+    }
+  }
+}
+
 TEST(CoreSamplers, ValuesAreUniform) {
   // Chi-square of a 64-bin histogram of values pooled over pixels, indices and dimensions.
   const double significance = sidak_significance(0.01, 3);
