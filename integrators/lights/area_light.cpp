@@ -31,7 +31,7 @@ std::optional<LightLiSample> toward_point(const Vec3& p, const Vec3& q, const Ve
   const float distance = glm::length(d);
   if (!(distance > 0.0f)) return std::nullopt;
   LightLiSample s;
-  s.wi = d / distance;
+  s.wi = d * (1.0f / distance);
   const float cos_light = emitting_cos(n, -s.wi, two_sided);
   if (cos_light <= 0.0f) return std::nullopt;  // the back of a one-sided emitter
   s.pdf = area_to_solid_angle_pdf(pdf_area, distance, cos_light);
@@ -208,10 +208,11 @@ std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
     if (!(std::abs(det) > 0.0f)) return std::nullopt;
     const Vec3 o = p - p0;
     const Vec3 qv = glm::cross(o, e1);
-    const float distance = glm::dot(e2, qv) / det;
+    const float inverse_det = 1.0f / det;
+    const float distance = glm::dot(e2, qv) * inverse_det;
     if (!(distance > 0.0f)) return std::nullopt;
-    const Vec2 b(std::clamp(glm::dot(o, pv) / det, 0.0f, 1.0f),
-                 std::clamp(glm::dot(*w, qv) / det, 0.0f, 1.0f));
+    const Vec2 b(std::clamp(glm::dot(o, pv) * inverse_det, 0.0f, 1.0f),
+                 std::clamp(glm::dot(*w, qv) * inverse_det, 0.0f, 1.0f));
     std::optional<LightLiSample> s =
         toward_triangle_point(p, i, p + distance * *w, b, 1.0f / area_, 1.0f / total);
     if (s) s->wi = *w;

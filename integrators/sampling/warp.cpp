@@ -126,15 +126,15 @@ std::optional<Vec3> sample_spherical_triangle(const Vec3& a, const Vec3& b, cons
   const Vec3 c_perp = c - glm::dot(c, a) * a;
   const float l_c_perp = glm::length(c_perp);
   if (!(l_c_perp > 0.0f)) return std::nullopt;
-  const Vec3 c_prime = cos_bp * a + safe_sqrt(1.0f - cos_bp * cos_bp) * (c_perp / l_c_perp);
+  const Vec3 c_prime = cos_bp * a + (safe_sqrt(1.0f - cos_bp * cos_bp) / l_c_perp) * c_perp;
   const float z = 1.0f - u.y * (1.0f - glm::dot(c_prime, b));
   const Vec3 cp_perp = c_prime - glm::dot(c_prime, b) * b;
   const float l_cp_perp = glm::length(cp_perp);
   if (!(l_cp_perp > 0.0f)) return b;
-  const Vec3 w = z * b + safe_sqrt(1.0f - z * z) * (cp_perp / l_cp_perp);
+  const Vec3 w = z * b + (safe_sqrt(1.0f - z * z) / l_cp_perp) * cp_perp;
   const float lw = glm::length(w);
   if (!(lw > 0.0f) || !std::isfinite(lw)) return std::nullopt;
-  return w / lw;
+  return w * (1.0f / lw);
 }
 
 }  // namespace prism
