@@ -40,7 +40,7 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
     // rounding off it (no trigonometry: the hit's (u, v) are kept only as the uv).
     const DVec3 along = DVec3(ray.origin) + double(hit.t) * DVec3(ray.direction) - DVec3(s.center);
     const double along_length = glm::length(along);
-    const DVec3 unit = along_length > 0.0 ? along * (1.0 / along_length) : DVec3(0.0, 0.0, 1.0);
+    const DVec3 unit = along_length > 0.0 ? along / along_length : DVec3(0.0, 0.0, 1.0);
     const Vec3 n(unit);
     si.position = Vec3(DVec3(s.center) + unit * double(s.radius));
     si.position_error = rebuilt_point_error(si.position, glm::abs(s.center) + Vec3(s.radius)) +
@@ -49,7 +49,7 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
     // turns it visibly from n, and sides must be judged where the point is.
     const DVec3 radial = DVec3(si.position) - DVec3(s.center);
     const double radial_length = glm::length(radial);
-    si.geometric_normal = radial_length > 0.0 ? Vec3(radial * (1.0 / radial_length)) : n;
+    si.geometric_normal = radial_length > 0.0 ? Vec3(radial / radial_length) : n;
     si.shading_normal = si.geometric_normal;
     si.uv = Vec2(hit.u, hit.v);
     si.material_id = s.material_id;
@@ -71,7 +71,7 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
                       Vec3(kTriangleTestGamma * max_component(reach));
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float ng_length = glm::length(ng);
-  ng = ng_length > 0.0f ? ng * (1.0f / ng_length) : -glm::normalize(ray.direction);
+  ng = ng_length > 0.0f ? ng / ng_length : -glm::normalize(ray.direction);
   si.geometric_normal = ng;
   si.shading_normal = ng;
   if (!mesh.normals.empty()) {
@@ -79,7 +79,7 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
     const Vec3 ns = w * mesh.normals[c] + hit.u * mesh.normals[c + 1] + hit.v * mesh.normals[c + 2];
     const float ns_length = glm::length(ns);
     if (ns_length > 0.0f && std::isfinite(ns_length)) {
-      si.shading_normal = ns * (1.0f / ns_length);
+      si.shading_normal = ns / ns_length;
       // Files whose winding disagrees with their normals (the CS184 Cornell floor): trust the
       // authored normal and turn the geometric one to its side.
       if (glm::dot(si.shading_normal, ng) < 0.0f) si.geometric_normal = -ng;
