@@ -209,6 +209,27 @@ TEST(CoreFilm, NonFiniteRadianceCountsAsZeroAndIsCounted) {
   EXPECT_NEAR(image.at(1, 0, Film::kVarianceChannel), 2.25f, 1e-6f);
 }
 
+TEST(CoreFilm, EmptySamplesCountInTheMeanAndTheVariance) {
+  // Samples of rays that left the scene (zero radiance, zero AOVs) take add_sample()'s short
+  // path: they must still count as samples, and a non-finite one must still be counted.
+  Film film(2, 1);
+  film.add_sample({0, 0}, Rgb(4.0f), aov(Rgb(0.8f), Vec3(0, 0, 1), 2.0f));
+  for (int i = 0; i < 3; ++i) film.add_sample({0, 0}, Rgb(0.0f));
+  film.add_sample({1, 0}, Rgb(-0.0f, 0.0f, -0.0f));
+  film.add_sample({1, 0}, Rgb(kNaN, kNaN, kNaN));
+  EXPECT_EQ(film.sample_count({0, 0}), 4u);
+  EXPECT_EQ(film.sample_count({1, 0}), 2u);
+  EXPECT_EQ(film.non_finite_samples(), 1u);
+  const Image image = film.resolve();
+  EXPECT_FLOAT_EQ(image.at(0, 0, 0), 1.0f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kAlbedoChannel), 0.2f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, Film::kDepthChannel), 0.5f);
+  // Samples 4, 0, 0, 0: sample variance 4, over 4 samples: 1.
+  EXPECT_NEAR(image.at(0, 0, Film::kVarianceChannel), 1.0f, 1e-6f);
+  EXPECT_EQ(image.at(1, 0, 0), 0.0f);
+  EXPECT_EQ(image.count_non_finite(), 0u);
+}
+
 TEST(CoreFilm, NonFiniteAovsAreLeftOutOfTheSums) {
   Film film(1, 1);
   film.add_sample({0, 0}, Rgb(1.0f), aov(Rgb(0.8f), Vec3(0, 0, 1), 4.0f));
