@@ -56,7 +56,7 @@ Ray CameraRayGenerator::generate_ray(Vec2 film, Vec2 lens) const {
   const Vec3 camera_dir{sx, sy, 1.0f};
   Vec3 origin_cam{0.0f};
   Vec3 dir_cam = camera_dir;
-  if (camera_.lens_radius > 0.0f) {
+  if (camera_.uses_lens()) {
     // Uniform disk sample by polar mapping; refocus through the plane at focal_distance.
     const float r = camera_.lens_radius * std::sqrt(lens.x);
     const float phi = 2.0f * kPi * lens.y;

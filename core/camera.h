@@ -27,8 +27,12 @@ struct Camera {
   /// view direction, fov outside (0, 180), non-finite values).
   void validate() const;
 
+  /// Whether generate_ray() reads its `lens` sample (a thin lens, lens_radius > 0); a pinhole
+  /// camera's sampler dimensions for it can be skipped.
+  bool uses_lens() const { return lens_radius > 0.0f; }
+
   /// The primary ray through film position `film` in [0,1]^2 ((0,0) is the top-left corner of
-  /// the image, x to the right, y down), using `lens` in [0,1)^2 when lens_radius > 0.
+  /// the image, x to the right, y down), using `lens` in [0,1)^2 when uses_lens().
   /// The direction is unit length; tmin/tmax bound the view-axis distance to [znear, zfar].
   Ray generate_ray(Vec2 film, Vec2 lens = Vec2(0.5f)) const;
 };

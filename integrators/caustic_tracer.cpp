@@ -111,7 +111,7 @@ std::optional<std::pair<Vec3, float>> CausticTracer::sample_toward_targets(const
 
 bool CausticTracer::applies(const RenderContext& context, const ShadingContext& shading,
                             int max_depth) {
-  if (max_depth < 2 || context.camera.lens_radius > 0.0f) return false;
+  if (max_depth < 2 || context.camera.uses_lens()) return false;
   const bool specular = std::any_of(shading.bsdfs.begin(), shading.bsdfs.end(),
                                     [](const auto& bsdf) { return bsdf && bsdf->is_delta(); });
   const bool light =

@@ -37,7 +37,7 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
   sampler->set_sample_count(batch > 0 ? std::min(batch, spp) : spp);
   // A pinhole camera reads no lens sample: its two dimensions are skipped, not computed (the
   // path's dimensions stay where they are with a lens).
-  const bool pinhole = !(context.camera.lens_radius > 0.0f);
+  const bool lens_sampled = context.camera.uses_lens();
   // The light-traced images of this range's sample indices, fetched when first needed (each
   // pixel of the tile runs through the range).
   const LightTracedImage* light_traced = estimator_->light_traced_image();
@@ -54,10 +54,10 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
         sampler->start_pixel_sample(pixel, s);
         const Vec2 film_position = (Vec2(pixel) + sampler->get_2d()) / film_size;
         Vec2 lens(0.0f);
-        if (pinhole) {
-          sampler->skip_dimensions(2);
-        } else {
+        if (lens_sampled) {
           lens = sampler->get_2d();
+        } else {
+          sampler->skip_dimensions(2);
         }
         const Ray ray = camera.generate_ray(film_position, lens);
         AovSample aovs;
