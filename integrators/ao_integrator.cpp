@@ -13,6 +13,7 @@ class AoEstimator final : public PixelEstimator {
       : context_(context), samples_(samples), reach_(reach) {}
 
   Rgb li(const Ray& ray, Sampler& sampler, AovSample& aovs) const override;
+  bool escaping_rays_are_black() const override { return true; }
 
  private:
   const RenderContext& context_;

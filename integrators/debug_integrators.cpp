@@ -16,6 +16,7 @@ class FirstHitEstimator final : public PixelEstimator {
     aovs = hit_aovs(context_.scene, ray, *hit, si);
     return Shade{}(ray, *hit, si);
   }
+  bool escaping_rays_are_black() const override { return true; }
 
  private:
   const RenderContext& context_;

@@ -13,6 +13,10 @@ class DirectEstimator final : public PixelEstimator {
         shading_(context.scene, settings.bsdf, settings.lights, texture_filter_of(context)) {}
 
   Rgb li(const Ray& ray, Sampler& sampler, AovSample& aovs) const override;
+  /// An escaping ray sees the infinite lights only.
+  bool escaping_rays_are_black() const override {
+    return shading_.lights.infinite_lights().empty();
+  }
 
  private:
   const RenderContext& context_;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/camera_coverage.h"
 #include "core/parallel.h"
 #include "integrators/bsdf/bsdf_factory.h"
 #include "integrators/light_traced_image.h"
@@ -14,13 +15,19 @@ namespace {
 class PixelTileRenderer final : public TileRenderer {
  public:
   PixelTileRenderer(const RenderContext& context, std::unique_ptr<const PixelEstimator> estimator)
-      : context_(context), estimator_(std::move(estimator)) {}
+      : context_(context),
+        estimator_(std::move(estimator)),
+        skip_unseen_(context.skip_unseen_pixels && estimator_->escaping_rays_are_black()),
+        scene_bounds_(skip_unseen_ ? context.scene.geometry.bounds() : Bounds3{}) {}
 
   void render_tile(const Tile& tile, SampleRange range, Film& film) const override;
 
  private:
   const RenderContext& context_;
   std::unique_ptr<const PixelEstimator> estimator_;
+  /// Whether pixels whose camera rays cannot reach scene_bounds_ take their samples untraced.
+  const bool skip_unseen_;
+  const Bounds3 scene_bounds_;
 };
 
 void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& film) const {
@@ -43,32 +50,42 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
   const LightTracedImage* light_traced = estimator_->light_traced_image();
   std::vector<std::shared_ptr<const LightTracedSample>> light_images;
   if (light_traced && range.last > range.first) light_images.resize(range.last - range.first);
+  // The pixels whose rays may reach the scene; the others' samples are known without tracing:
+  // no radiance (but the light tracer's, which never reaches them either) and no AOVs.
+  const PixelRect seeing = skip_unseen_ ? pixels_seeing_bounds(context.camera, scene_bounds_,
+                                                               film.width(), film.height())
+                                        : PixelRect{{0, 0}, {film.width(), film.height()}};
   for (int y = tile.begin.y; y < tile.end.y; ++y) {
     for (int x = tile.begin.x; x < tile.end.x; ++x) {
       const glm::ivec2 pixel{x, y};
+      const bool traced = seeing.contains(pixel);
       FilmPixel& state = film.pixel(pixel);
       // With one sample per pass (the default at 64 spp) the next pixel's film state is cold.
       if (x + 1 < tile.end.x) film.prefetch({x + 1, y});
       for (uint32_t s = std::max(range.first, state.progress); s < range.last && !state.converged;
            ++s) {
-        sampler->start_pixel_sample(pixel, s);
-        const Vec2 film_position = (Vec2(pixel) + sampler->get_2d()) / film_size;
-        Vec2 lens(0.0f);
-        if (lens_sampled) {
-          lens = sampler->get_2d();
-        } else {
-          sampler->skip_dimensions(2);
-        }
-        const Ray ray = camera.generate_ray(film_position, lens);
         AovSample aovs;
-        Rgb radiance;
+        Rgb radiance(0.0f);
+        const LightTracedSample* light = nullptr;
         if (light_traced) {
-          std::shared_ptr<const LightTracedSample>& light = light_images[s - range.first];
-          if (!light) light = light_traced->sample(s);
-          radiance = estimator_->li_with_light(ray, *sampler, aovs, *light) + light->at(pixel);
-        } else {
-          radiance = estimator_->li(ray, *sampler, aovs);
+          std::shared_ptr<const LightTracedSample>& image = light_images[s - range.first];
+          if (!image) image = light_traced->sample(s);
+          light = image.get();
         }
+        if (traced) {
+          sampler->start_pixel_sample(pixel, s);
+          const Vec2 film_position = (Vec2(pixel) + sampler->get_2d()) / film_size;
+          Vec2 lens(0.0f);
+          if (lens_sampled) {
+            lens = sampler->get_2d();
+          } else {
+            sampler->skip_dimensions(2);
+          }
+          const Ray ray = camera.generate_ray(film_position, lens);
+          radiance = light ? estimator_->li_with_light(ray, *sampler, aovs, *light)
+                           : estimator_->li(ray, *sampler, aovs);
+        }
+        if (light) radiance += light->at(pixel);
         film.add_sample(pixel, radiance, aovs);
         if (batch <= 0) continue;
         // Illuminance sums in double, in sample order: thousands of samples.

@@ -21,9 +21,9 @@ class LightTracedSample;
 /// Everything an integrator reads while rendering, besides its own parameters. All references
 /// outlive the render.
 struct RenderContext {
-  const Scene& scene;  ///< with its environment map, if any
-  const Accelerator& accel;
-  const Camera& camera;  ///< already fitted to the image's aspect ratio
+  const Scene& scene;        ///< with its environment map, if any
+  const Accelerator& accel;  ///< built over scene.geometry
+  const Camera& camera;      ///< already fitted to the image's aspect ratio
   const Sampler& sampler_prototype;
   /// Camera rays per pixel of the whole render (-s): samplers stratify over it, whichever
   /// part of the sample range one call renders.
@@ -37,6 +37,11 @@ struct RenderContext {
   int adaptive_batch = 0;                ///< adaptive sampling batch size, 0 = off (-a B tol)
   float adaptive_tolerance = 0.05f;      ///< adaptive sampling tolerance (-a B tol)
   ProgressReporter* progress = nullptr;  ///< may be null; Integrator::render() advances it
+  /// Whether the tile loop fills the pixels whose camera rays cannot reach the scene's bounds
+  /// (pixels_seeing_bounds()) with the empty samples they would take, without tracing them,
+  /// when the estimator's escaping rays are black: the film is the same bit for bit either
+  /// way (tests render both).
+  bool skip_unseen_pixels = true;
 };
 
 /// The per-render state of an integrator (lights, BSDFs, distances derived from the scene)
@@ -81,6 +86,11 @@ class PixelEstimator {
   /// Radiance traced from the lights for this render, added to every camera sample of the
   /// same pixel and sample index (light paths li() leaves to it); null: none.
   virtual const LightTracedImage* light_traced_image() const { return nullptr; }
+  /// Whether li() (and li_with_light()) of a camera ray that hits nothing returns exactly 0 and
+  /// leaves `aovs` as given, whatever the sampler: then the tile loop need not trace camera rays
+  /// that cannot hit the scene. False (the safe default) when something is seen in the
+  /// background, such as an environment map.
+  virtual bool escaping_rays_are_black() const { return false; }
   /// li() for a camera sample of a render with a light_traced_image(): `light` is that image's
   /// sample of the camera sample's index, whose caustic vertices li() may connect to. The
   /// default ignores it.

@@ -60,6 +60,10 @@ class PathEstimator final : public PixelEstimator {
     return li_paths(camera_ray, sampler, aovs, &light);
   }
   const LightTracedImage* light_traced_image() const override { return light_traced_.get(); }
+  /// An escaping ray sees the infinite lights only.
+  bool escaping_rays_are_black() const override {
+    return shading_.lights.infinite_lights().empty();
+  }
 
  private:
   /// Light arriving at `sp` from one light chosen by power, MIS-weighted against BSDF

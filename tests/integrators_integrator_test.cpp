@@ -3,11 +3,13 @@
 // adaptive sampling, and images independent of the thread count and of concurrent renders.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <memory>
 #include <string>
 #include <thread>
 
+#include "core/camera_coverage.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "tests/support/integrators_test_scenes.h"
@@ -223,6 +225,64 @@ TEST(IntegratorsIntegrator, ConcurrentRendersOfOneInstanceMatchSequentialOnes) {
     }
     EXPECT_TRUE(concurrent_a.resolve().pixels == sequential_a.resolve().pixels);
     EXPECT_TRUE(concurrent_b.resolve().pixels == sequential_b.resolve().pixels);
+  }
+}
+
+TEST(IntegratorsIntegrator, UnseenPixelsTakeTheSamplesTracingWouldGive) {
+  // The box seen from farther back, so that a border of the frame sees nothing: the tile loop
+  // fills those pixels without tracing them, and the film must be the one tracing gives, bit
+  // for bit, for every integrator, with the light tracer's caustics (glass sphere), adaptive
+  // sampling and a crop window; with an environment map nothing may be skipped.
+  Scene box = test::cornell_box({.spheres = true, .sphere_material = MaterialType::kGlass});
+  box.camera.position = Vec3(0.0f, 1.0f, 5.5f);
+  Scene with_environment = test::cornell_box({.spheres = true});
+  with_environment.camera.position = box.camera.position;
+  Image sky;
+  sky.width = 8;
+  sky.height = 4;
+  sky.channel_names = {"R", "G", "B"};
+  sky.pixels.assign(8 * 4 * 3, 0.5f);
+  test::set_environment(with_environment, std::move(sky));
+  const RenderInputs inputs[] = {RenderInputs(std::move(box), 32),
+                                 RenderInputs(std::move(with_environment), 32)};
+  // The test is only worth something if a good part of the frame is skippable.
+  const PixelRect seeing =
+      pixels_seeing_bounds(inputs[0].camera, inputs[0].scene.geometry.bounds(), 32, 32);
+  ASSERT_LT(seeing.pixel_count(), size_t(32 * 32 * 3 / 4));
+  ASSERT_GT(seeing.pixel_count(), 0u);
+  const PixelRect crop{{2, 5}, {29, 30}};
+  for (const RenderInputs& in : inputs) {
+    for (const char* name : {"path", "direct", "ao", "normals", "depth"}) {
+      for (const int batch : {0, 2}) {
+        SCOPED_TRACE(std::string(name) + (batch ? " adaptive" : "") +
+                     (&in == &inputs[0] ? "" : " environment"));
+        const std::unique_ptr<Integrator> integrator =
+            integrator_registry().create(name, ParamSet{});
+        RenderContext context = in.context();
+        context.image_width = context.image_height = in.size;
+        context.adaptive_batch = batch;
+        context.adaptive_tolerance = 0.2f;
+        Film skipped(in.size, in.size, crop), traced(in.size, in.size, crop);
+        context.skip_unseen_pixels = true;
+        integrator->render(context, skipped);
+        context.skip_unseen_pixels = false;
+        integrator->render(context, traced);
+        const Image a = skipped.resolve(), b = traced.resolve();
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        for (size_t i = 0; i < a.pixels.size(); ++i) {
+          ASSERT_EQ(std::bit_cast<uint32_t>(a.pixels[i]), std::bit_cast<uint32_t>(b.pixels[i]))
+              << "channel value " << i;
+        }
+        const std::string integrator_name(name);
+        const bool sky_seen =
+            &in != &inputs[0] && (integrator_name == "path" || integrator_name == "direct");
+        if (sky_seen) {
+          // The crop's corner sees the sky past the box: not left black.
+          ASSERT_FALSE(seeing.contains(crop.begin));
+          EXPECT_GT(a.at(0, 0, 0), 0.0f);
+        }
+      }
+    }
   }
 }
 
