@@ -21,6 +21,12 @@ class Sampler {
   virtual float get_1d() = 0;
   /// The next two dimensions' values in [0, 1)^2.
   virtual Vec2 get_2d() = 0;
+  /// The next two dimensions' values in [0, 1)^2, drawn as further dimensions of the point the
+  /// last get_2d() began, so that the pairs of a chain are stratified jointly, not each on its
+  /// own: for values whose integrand is smooth across them (a path's direction at one vertex and
+  /// its light sample and direction at the next). Samplers without such points, and a chain that
+  /// has run out, return get_2d() (which begins a new chain). 1D values between do not break it.
+  virtual Vec2 get_2d_chained() { return get_2d(); }
   /// Passes over the next `count` dimensions without computing their values: the dimensions
   /// after them get the values they would have had (a pinhole camera's lens pair).
   virtual void skip_dimensions(uint32_t count) = 0;

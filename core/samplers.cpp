@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/sobol_chain.h"
+
 namespace prism {
 namespace {
 
@@ -182,6 +184,7 @@ void SobolSampler::start_pixel_sample(glm::ivec2 pixel, uint32_t index) {
   index_in_block_ = index % samples_per_pixel_;
   sample_hash_ = mix_bits(pixel_hash_ ^ (uint64_t(index) * 0x9e3779b97f4a7c15ULL));
   dimension_ = 0;
+  chain_next_ = kSobolChainDimensions;  // no chain yet
 }
 
 uint64_t SobolSampler::hashed_bits() const {
@@ -218,14 +221,30 @@ Vec2 SobolSampler::get_2d() {
   if (dimension_ >= sobol_dimensions_) {
     const uint64_t bits = hashed_bits();
     dimension_ += 2;
+    chain_next_ = kSobolChainDimensions;  // hashed values begin no chain
     return {bits_to_unit_float(uint32_t(bits >> 32)), bits_to_unit_float(uint32_t(bits))};
   }
   const uint64_t h = dimension_hash(pixel_hash_, dimension_);
   dimension_ += 2;
   const uint32_t i = permuted_index(h);
+  chain_index_ = i;
+  chain_next_ = 0;
   return {bits_to_unit_float(reverse_bits(owen_scramble_reversed(i, uint32_t(h >> 32)))),
           bits_to_unit_float(
               reverse_bits(owen_scramble_reversed(sobol_dimension1_reversed(i), uint32_t(h))))};
+}
+
+Vec2 SobolSampler::get_2d_chained() {
+  if (dimension_ >= sobol_dimensions_ || chain_next_ + 2 > kSobolChainDimensions) return get_2d();
+  // The dimension's own hash gives the two scrambles, as in get_2d(); the index is the chain's.
+  const uint64_t h = dimension_hash(pixel_hash_, dimension_);
+  dimension_ += 2;
+  const int k = chain_next_;
+  chain_next_ += 2;
+  return {bits_to_unit_float(reverse_bits(owen_scramble_reversed(
+              sobol_chain_dimension_reversed(k, chain_index_), uint32_t(h >> 32)))),
+          bits_to_unit_float(reverse_bits(owen_scramble_reversed(
+              sobol_chain_dimension_reversed(k + 1, chain_index_), uint32_t(h))))};
 }
 
 std::unique_ptr<Sampler> SobolSampler::clone() const {

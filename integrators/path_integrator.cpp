@@ -96,7 +96,9 @@ Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) c
   for (int i = 0; i < n; ++i) {
     // With a single light the choice needs no sample value (nor a sampler dimension).
     const float u_light = shading_.lights.size() > 1 ? sampler.get_1d() : 0.0f;
-    const Vec2 u = sampler.get_2d();
+    // Chained to the pair sampled before it (the direction that led here, or the film position
+    // at the first hit): one stratified point for both (Sampler::get_2d_chained()).
+    const Vec2 u = sampler.get_2d_chained();
     float pmf = 0.0f;
     const LightSource* light = shading_.lights.sample(u_light, &pmf);
     if (!light || !(pmf > 0.0f)) continue;
@@ -255,7 +257,10 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
     }
 
     const float u_lobe = sampler.get_1d();
-    const std::optional<BsdfSample> bs = sp.sample(u_lobe, sampler.get_2d());
+    // The first vertex's direction begins a fresh point (chained to the film position it
+    // measured worse: relMSE +12% on CBbunny); later ones continue the path's chain.
+    const std::optional<BsdfSample> bs =
+        sp.sample(u_lobe, bounces == 0 ? sampler.get_2d() : sampler.get_2d_chained());
     if (!bs) break;
     beta *= bs->f * (std::abs(glm::dot(bs->wi, si.shading_normal)) / bs->pdf);
     if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
