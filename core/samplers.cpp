@@ -282,7 +282,9 @@ const Registry<Sampler>& sampler_registry() {
           Entry{"sobol",
                 "Owen-scrambled Sobol (0,2)-sequence per dimension pair, padded by per-pixel "
                 "index permutations, for the first sampler.sobol_dimensions (" +
-                    std::to_string(SobolSampler::kSobolDimensions) + ") dimensions",
+                    std::to_string(SobolSampler::kSobolDimensions) +
+                    ") dimensions; chained pairs continue a pair's point in Sobol dimensions "
+                    "2-9",
                 [](const ParamSet& p) -> std::unique_ptr<Sampler> {
                   return std::make_unique<SobolSampler>(
                       seed_param(p), spp_param(p),
