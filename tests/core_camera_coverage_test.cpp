@@ -30,12 +30,7 @@ bool ray_meets_box(const Ray& ray, const Bounds3& box) {
 }
 
 Camera pinhole(Vec3 position, Vec3 target, float hfov, float vfov) {
-  Camera c;
-  c.position = position;
-  c.target = target;
-  c.hfov_deg = hfov;
-  c.vfov_deg = vfov;
-  return c;
+  return Camera{.position = position, .target = target, .hfov_deg = hfov, .vfov_deg = vfov};
 }
 
 TEST(CoreCameraCoverage, NoRayOfAPixelOutsideTheRectangleMeetsTheBox) {

@@ -185,12 +185,7 @@ TEST(IntegratorsAnalytic, DiffuseSphereInAUniformEnvironment) {
   // sphere's pixels have radiance a, the background 1 (a white furnace for the whole stack).
   const float a = 0.6f;
   Scene scene = one_diffuse_sphere(a);
-  Image environment;
-  environment.width = 16;
-  environment.height = 8;
-  environment.channel_names = {"R", "G", "B"};
-  environment.pixels.assign(16 * 8 * 3, 1.0f);
-  test::set_environment(scene, std::move(environment));
+  test::set_environment(scene, test::uniform_rgb_image(16, 8, 1.0f));
   TestRender settings;
   settings.width = settings.height = 16;
   settings.spp = 64;

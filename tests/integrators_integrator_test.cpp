@@ -198,12 +198,7 @@ TEST(IntegratorsIntegrator, ConcurrentRendersOfOneInstanceMatchSequentialOnes) {
   // Two different scenes (other materials, lights, size and film), so that state of one render
   // leaking into the other would show.
   Scene with_environment = test::cornell_box({.camera_on_floor = true});
-  Image sky;
-  sky.width = 8;
-  sky.height = 4;
-  sky.channel_names = {"R", "G", "B"};
-  sky.pixels.assign(8 * 4 * 3, 0.5f);
-  test::set_environment(with_environment, std::move(sky));
+  test::set_environment(with_environment, test::uniform_rgb_image(8, 4, 0.5f));
   const RenderInputs a(
       test::cornell_box({.spheres = true, .sphere_material = MaterialType::kGlass}), 24);
   const RenderInputs b(std::move(with_environment), 20);
@@ -237,12 +232,7 @@ TEST(IntegratorsIntegrator, UnseenPixelsTakeTheSamplesTracingWouldGive) {
   box.camera.position = Vec3(0.0f, 1.0f, 5.5f);
   Scene with_environment = test::cornell_box({.spheres = true});
   with_environment.camera.position = box.camera.position;
-  Image sky;
-  sky.width = 8;
-  sky.height = 4;
-  sky.channel_names = {"R", "G", "B"};
-  sky.pixels.assign(8 * 4 * 3, 0.5f);
-  test::set_environment(with_environment, std::move(sky));
+  test::set_environment(with_environment, test::uniform_rgb_image(8, 4, 0.5f));
   const RenderInputs inputs[] = {RenderInputs(std::move(box), 32),
                                  RenderInputs(std::move(with_environment), 32)};
   // The test is only worth something if a good part of the frame is skippable.

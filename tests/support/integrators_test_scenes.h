@@ -137,6 +137,16 @@ struct TestRender {
   std::string accelerator = "bvh";
 };
 
+/// A width x height RGB image with every channel `value` (an environment map of one radiance).
+inline Image uniform_rgb_image(int width, int height, float value) {
+  Image image;
+  image.width = width;
+  image.height = height;
+  image.channel_names = {"R", "G", "B"};
+  image.pixels.assign(size_t(width) * size_t(height) * 3, value);
+  return image;
+}
+
 /// Gives `scene` the environment map `image`, its row 0 at the pole along the scene camera's
 /// up, as the render driver does for -e.
 inline void set_environment(Scene& scene, Image image) {
