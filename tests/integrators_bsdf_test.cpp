@@ -309,5 +309,39 @@ TEST(IntegratorsBsdf, FactoryBuildsEveryMaterialType) {
   EXPECT_THROW(make_bsdf(m), Error);
 }
 
+TEST(IntegratorsBsdf, OnlyBsdfsThatReadTheLobeSampleSayTheyDo) {
+  // The path integrator skips u_lobe's sampler dimension for a BSDF that does not read it: its
+  // samples must then be the same for every u_lobe. Glass, which reads it, must change lobe.
+  Material m;
+  m.type = MaterialType::kMicrofacet;  // from the factory, as renders build them
+  std::vector<NamedBsdf> bsdfs = glossy_bsdfs();
+  bsdfs.push_back({"factory microfacet", make_bsdf(m)});
+  bsdfs.push_back({"mirror", std::make_shared<MirrorBsdf>(Rgb(0.9f))});
+  bsdfs.push_back({"refraction", std::make_shared<RefractionBsdf>(Rgb(1.0f), 1.5f)});
+  m.type = MaterialType::kEmission;
+  bsdfs.push_back({"emission", make_bsdf(m)});
+  for (const NamedBsdf& b : bsdfs) {
+    SCOPED_TRACE(b.name);
+    EXPECT_FALSE(b.bsdf->reads_lobe_sample());
+    for (float theta : {5.0f, 40.0f, 80.0f, 130.0f}) {
+      for (Vec2 u : {Vec2(0.1f, 0.7f), Vec2(0.6f, 0.2f), Vec2(0.93f, 0.45f)}) {
+        const auto a = b.bsdf->sample(direction_at(theta), 0.05f, u);
+        const auto c = b.bsdf->sample(direction_at(theta), 0.95f, u);
+        ASSERT_EQ(a.has_value(), c.has_value()) << theta;
+        if (!a) continue;
+        EXPECT_EQ(a->wi, c->wi) << theta;
+        EXPECT_EQ(a->f, c->f) << theta;
+        EXPECT_EQ(a->pdf, c->pdf) << theta;
+      }
+    }
+  }
+  const GlassBsdf glass(Rgb(1.0f), Rgb(1.0f), 1.5f);
+  EXPECT_TRUE(glass.reads_lobe_sample());
+  const auto reflected = glass.sample(direction_at(30.0f), 0.0f, Vec2(0.5f));
+  const auto refracted = glass.sample(direction_at(30.0f), 0.99f, Vec2(0.5f));
+  ASSERT_TRUE(reflected && refracted);
+  EXPECT_NE(reflected->lobe, refracted->lobe);
+}
+
 }  // namespace
 }  // namespace prism

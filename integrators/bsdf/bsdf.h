@@ -51,6 +51,9 @@ class Bsdf {
   virtual float pdf(const Vec3& wo, const Vec3& wi) const = 0;
   /// The lobes present.
   virtual uint32_t lobes() const = 0;
+  /// Whether sample() reads `u_lobe` (a choice between lobes). When it does not, a caller may
+  /// skip that sampler dimension instead of computing a value nobody reads.
+  virtual bool reads_lobe_sample() const { return true; }
   /// A colour in [0,1]^3 that describes the surface (the albedo AOV).
   virtual Rgb albedo() const = 0;
 

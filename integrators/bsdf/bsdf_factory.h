@@ -26,6 +26,7 @@ class EmissionBsdf final : public Bsdf {
   std::optional<BsdfSample> sample(const Vec3&, float, Vec2) const override { return std::nullopt; }
   float pdf(const Vec3&, const Vec3&) const override { return 0.0f; }
   uint32_t lobes() const override { return kLobeNone; }
+  bool reads_lobe_sample() const override { return false; }
   Rgb albedo() const override { return Rgb(0.0f); }
 };
 

@@ -12,6 +12,7 @@ class DiffuseBsdf final : public Bsdf {
   std::optional<BsdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const override;
   float pdf(const Vec3& wo, const Vec3& wi) const override;
   uint32_t lobes() const override { return kLobeReflection | kLobeDiffuse; }
+  bool reads_lobe_sample() const override { return false; }
   Rgb albedo() const override { return reflectance_; }
 
  private:

@@ -12,6 +12,7 @@ class MirrorBsdf final : public Bsdf {
   std::optional<BsdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const override;
   float pdf(const Vec3&, const Vec3&) const override { return 0.0f; }
   uint32_t lobes() const override { return kLobeReflection | kLobeSpecular; }
+  bool reads_lobe_sample() const override { return false; }
   Rgb albedo() const override { return reflectance_; }
 
  private:
