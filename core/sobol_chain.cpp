@@ -1,7 +1,5 @@
 #include "core/sobol_chain.h"
 
-#include <initializer_list>
-
 namespace prism {
 namespace {
 
