@@ -4,8 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "core/sobol_chain.h"
-
 namespace prism {
 namespace {
 
@@ -24,13 +22,6 @@ uint64_t dimension_hash(uint64_t pixel_hash, uint32_t dimension) {
   return mix_bits(pixel_hash + uint64_t(dimension) * 0xd1b54a32d192ed03ULL);
 }
 
-uint32_t reverse_bits(uint32_t v) {
-  v = __builtin_bswap32(v);  // the byte order reversed, then the bits within each byte
-  v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
-  v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
-  return ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
-}
-
 /// The body of owen_scramble() on an already bit-reversed value: owen_scramble(v, seed) ==
 /// reverse_bits(owen_scramble_reversed(reverse_bits(v), seed)).
 uint32_t owen_scramble_reversed(uint32_t x, uint32_t seed) {
@@ -40,37 +31,6 @@ uint32_t owen_scramble_reversed(uint32_t x, uint32_t seed) {
   x ^= x * 0x05526c56u;
   x ^= x * 0x53a22864u;
   return x;
-}
-
-/// reverse_bits(sobol_dimension1(index)), and through it sobol_dimension1: the generator is linear
-/// over GF(2), so the result is the XOR of the columns of index's set bits, taken eight bits at a
-/// time from tables (column j of the reversed generator is row j of Pascal's triangle mod 2: r_0 =
-/// 1, r_j = r_{j-1} ^ (r_{j-1} << 1)). Sample indices are mostly below 256: one lookup.
-struct SobolDimension1Tables {
-  uint32_t byte[4][256];
-};
-constexpr SobolDimension1Tables make_sobol_dimension1_tables() {
-  SobolDimension1Tables tables{};
-  uint32_t column[32] = {};
-  uint32_t r = 1;
-  for (int j = 0; j < 32; ++j, r ^= r << 1) column[j] = r;
-  for (int k = 0; k < 4; ++k) {
-    for (uint32_t v = 0; v < 256; ++v) {
-      uint32_t result = 0;
-      for (int bit = 0; bit < 8; ++bit) {
-        if ((v >> bit) & 1u) result ^= column[8 * k + bit];
-      }
-      tables.byte[k][v] = result;
-    }
-  }
-  return tables;
-}
-constexpr SobolDimension1Tables kSobolDimension1Tables = make_sobol_dimension1_tables();
-
-uint32_t sobol_dimension1_reversed(uint32_t index) {
-  uint32_t result = kSobolDimension1Tables.byte[0][index & 0xffu];
-  for (int k = 1; (index >>= 8) != 0; ++k) result ^= kSobolDimension1Tables.byte[k][index & 0xffu];
-  return result;
 }
 
 /// permutation_element() with its count's bit width precomputed (`bits` = bit_width(count -
@@ -105,10 +65,6 @@ uint32_t permutation_element(uint32_t index, uint32_t count, uint64_t seed) {
   // the restriction is a permutation of [0, count).
   return permutation_element_of_width(index, count, std::bit_width(count - 1), seed);
 }
-
-uint32_t sobol_dimension0(uint32_t index) { return reverse_bits(index); }
-
-uint32_t sobol_dimension1(uint32_t index) { return reverse_bits(sobol_dimension1_reversed(index)); }
 
 uint32_t owen_scramble(uint32_t v, uint32_t seed) {
   // After reversal, the most significant bit of the value is the least significant bit of x.
@@ -202,9 +158,9 @@ uint32_t SobolSampler::permuted_index(uint64_t h) const {
   return block_ * n + permutation_element_of_width(index_in_block_, n, int(permutation_bits_), key);
 }
 
-// The scrambles below work on bit-reversed values: sobol_dimension0(i) is reverse_bits(i), so
-// owen_scramble(sobol_dimension0(i), s) is reverse_bits(owen_scramble_reversed(i, s)), and
-// sobol_dimension1 is built reversed; the values are those of owen_scramble() bit for bit.
+// The scrambles below work on bit-reversed values: sobol_dimension(0, i) is reverse_bits(i), so
+// owen_scramble(sobol_dimension(0, i), s) is reverse_bits(owen_scramble_reversed(i, s)), and the
+// other dimensions are tabled reversed; the values are those of owen_scramble() bit for bit.
 
 float SobolSampler::get_1d() {
   if (dimension_ >= sobol_dimensions_) {
@@ -231,7 +187,7 @@ Vec2 SobolSampler::get_2d() {
   chain_next_ = 0;
   return {bits_to_unit_float(reverse_bits(owen_scramble_reversed(i, uint32_t(h >> 32)))),
           bits_to_unit_float(
-              reverse_bits(owen_scramble_reversed(sobol_dimension1_reversed(i), uint32_t(h))))};
+              reverse_bits(owen_scramble_reversed(sobol_dimension_reversed(1, i), uint32_t(h))))};
 }
 
 Vec2 SobolSampler::get_2d_chained() {
@@ -242,9 +198,9 @@ Vec2 SobolSampler::get_2d_chained() {
   const int k = chain_next_;
   chain_next_ += 2;
   return {bits_to_unit_float(reverse_bits(owen_scramble_reversed(
-              sobol_chain_dimension_reversed(k, chain_index_), uint32_t(h >> 32)))),
-          bits_to_unit_float(reverse_bits(owen_scramble_reversed(
-              sobol_chain_dimension_reversed(k + 1, chain_index_), uint32_t(h))))};
+              sobol_dimension_reversed(2 + k, chain_index_), uint32_t(h >> 32)))),
+          bits_to_unit_float(reverse_bits(
+              owen_scramble_reversed(sobol_dimension_reversed(3 + k, chain_index_), uint32_t(h))))};
 }
 
 std::unique_ptr<Sampler> SobolSampler::clone() const {

@@ -7,6 +7,7 @@
 #include "core/param_set.h"
 #include "core/registry.h"
 #include "core/sampler.h"
+#include "core/sobol_dimensions.h"
 
 namespace prism {
 
@@ -40,7 +41,7 @@ class JitteredSampler final : public Sampler {
 /// dimensions. With a power-of-two sample count every pair of a pixel is a (0,m,2)-net.
 ///
 /// get_2d_chained() continues the last get_2d()'s point: the same permuted index in Sobol
-/// dimensions 2, 3, then 4, 5, ... (kSobolChainDimensions of them, core/sobol_chain.h), each
+/// dimensions 2, 3, then 4, 5, ... (kSobolChainDimensions of them, core/sobol_dimensions.h), each
 /// with its own scramble, so that with a power-of-two count the chained pairs and the pair they
 /// continue are one scrambled Sobol point set of up to ten dimensions, stratified jointly. The
 /// path integrator chains a light sample to the direction sampled at the vertex before it:
@@ -85,17 +86,12 @@ class SobolSampler final : public Sampler {
   uint32_t block_ = 0;             ///< index / samples_per_pixel_
   uint32_t dimension_ = 0;
   uint32_t chain_index_ = 0;  ///< the permuted Sobol index of the last get_2d()
-  int chain_next_ = 0;  ///< next sobol_chain_dimension() k; kSobolChainDimensions: no chain left
+  int chain_next_ = 0;  ///< the chain goes on in dimension 2 + this; kSobolChainDimensions: ended
 };
 
 /// Element `index` (< count) of a pseudo-random permutation of [0, count) chosen by `seed`:
 /// a bijection for every seed, computed in O(1) expected time without tables.
 uint32_t permutation_element(uint32_t index, uint32_t count, uint64_t seed);
-
-/// Sample `index` of Sobol dimension 0 (the van der Corput sequence) as 0.32 fixed point.
-uint32_t sobol_dimension0(uint32_t index);
-/// Sample `index` of Sobol dimension 1 (generator: the Pascal matrix mod 2) as 0.32 fixed point.
-uint32_t sobol_dimension1(uint32_t index);
 
 /// A nested uniform (Owen) scramble of the 0.32 fixed-point value `v`: each bit is flipped by
 /// a pseudo-random function of the more significant bits and `seed` (hash-based, after Burley,

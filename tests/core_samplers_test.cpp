@@ -235,7 +235,7 @@ TEST(CoreSamplers, SobolDimensionsPastTheStratifiedOnesAreHashed) {
 TEST(CoreSamplers, SobolDimension1IsTheSobolSequence) {
   // Indices in binary order (not Gray code): v1 = 1/2, v2 = 3/4, v3 = 5/8 and their xors.
   const double expected[] = {0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875};
-  for (uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_dimension1(i) / 4294967296.0, expected[i]);
+  for (uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_dimension(1, i) / 4294967296.0, expected[i]);
   // The sampler's byte tables against the definition, a bit at a time: direction numbers of the
   // primitive polynomial x + 1, v_j = v_{j-1} ^ (v_{j-1} >> 1), v_0 = 2^31. Every index below
   // 2^16 and random ones up to 2^32, so that each of the four tables is read.
@@ -246,11 +246,11 @@ TEST(CoreSamplers, SobolDimension1IsTheSobolSequence) {
     }
     return result;
   };
-  for (uint32_t i = 0; i < (1u << 16); ++i) ASSERT_EQ(sobol_dimension1(i), by_definition(i)) << i;
+  for (uint32_t i = 0; i < (1u << 16); ++i) ASSERT_EQ(sobol_dimension(1, i), by_definition(i)) << i;
   std::mt19937 rng(3);
   for (int k = 0; k < 100000; ++k) {
     const uint32_t i = uint32_t(rng());
-    ASSERT_EQ(sobol_dimension1(i), by_definition(i)) << i;
+    ASSERT_EQ(sobol_dimension(1, i), by_definition(i)) << i;
   }
 }
 

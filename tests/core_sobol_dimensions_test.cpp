@@ -1,4 +1,4 @@
-// Sobol dimensions 2 to 9 (core/sobol_chain) and the Sobol sampler's chained pairs
+// Sobol dimensions 2 to 9 (core/sobol_dimensions) and the Sobol sampler's chained pairs
 // (SobolSampler::get_2d_chained()): the sequence itself, and the joint stratification that the
 // path integrator's light samples get from it.
 #include <gtest/gtest.h>
@@ -8,60 +8,57 @@
 #include <vector>
 
 #include "core/samplers.h"
-#include "core/sobol_chain.h"
+#include "core/sobol_dimensions.h"
 
 namespace prism {
 namespace {
 
-/// The smallest t for which the 2^m points (x[i], y[i]) are a (t, m, 2)-net: every elementary
-/// interval of area 2^(t - m) holds exactly 2^t of them.
-int net_quality(const std::vector<double>& x, const std::vector<double>& y, int m) {
-  for (int t = 0; t <= m; ++t) {
-    bool net = true;
-    for (int k = 0; k <= m - t && net; ++k) {
-      const int cols = 1 << k, rows = 1 << (m - t - k);
-      std::vector<int> cells(size_t(cols) * rows, 0);
-      for (size_t i = 0; i < x.size(); ++i)
-        ++cells[size_t(y[i] * rows) * cols + size_t(x[i] * cols)];
-      for (int c : cells) net = net && c == (1 << t);
+/// Whether every way of splitting `bits` index bits over the coordinates in `dims` (2^bits[k]
+/// equal parts on axis k, bits in total) puts exactly `per_cell` of the points in each cell.
+bool every_split_holds(const std::vector<const std::vector<double>*>& dims, std::vector<int>& bits,
+                       size_t axis, int left, int per_cell) {
+  if (axis + 1 < dims.size()) {
+    for (int b = 0; b <= left; ++b) {
+      bits[axis] = b;
+      if (!every_split_holds(dims, bits, axis + 1, left - b, per_cell)) return false;
     }
-    if (net) return t;
+    return true;
   }
-  return m + 1;
+  bits[axis] = left;
+  int total = 0;
+  for (int b : bits) total += b;
+  std::vector<int> cells(size_t(1) << total, 0);
+  for (size_t i = 0; i < dims[0]->size(); ++i) {
+    size_t cell = 0;
+    for (size_t k = 0; k < dims.size(); ++k) {
+      cell = (cell << bits[k]) | size_t((*dims[k])[i] * (1 << bits[k]));
+    }
+    ++cells[cell];
+  }
+  for (int n : cells) {
+    if (n != per_cell) return false;
+  }
+  return true;
 }
 
-/// The smallest t for which the 2^m points of `dims` (4 coordinate lists) are a (t, m, 4)-net.
-int net_quality4(const std::array<const std::vector<double>*, 4>& dims, int m) {
+/// The smallest t for which the 2^m points whose coordinates are `dims` are a (t, m, s)-net,
+/// s = dims.size(): every elementary interval of volume 2^(t - m) holds exactly 2^t of them.
+int net_quality(const std::vector<const std::vector<double>*>& dims, int m) {
   for (int t = 0; t <= m; ++t) {
-    bool net = true;
-    const int total = m - t;
-    for (int a = 0; a <= total && net; ++a)
-      for (int b = 0; a + b <= total && net; ++b)
-        for (int c = 0; a + b + c <= total && net; ++c) {
-          const int d = total - a - b - c;
-          const int bits[4] = {a, b, c, d};
-          std::vector<int> cells(size_t(1) << total, 0);
-          for (size_t i = 0; i < dims[0]->size(); ++i) {
-            size_t cell = 0;
-            for (int k = 0; k < 4; ++k)
-              cell = (cell << bits[k]) | size_t((*dims[k])[i] * (1 << bits[k]));
-            ++cells[cell];
-          }
-          for (int n : cells) net = net && n == (1 << t);
-        }
-    if (net) return t;
+    std::vector<int> bits(dims.size(), 0);
+    if (every_split_holds(dims, bits, 0, m - t, 1 << t)) return t;
   }
   return m + 1;
 }
 
-TEST(CoreSobolChain, DimensionsAreTheSobolSequence) {
+TEST(CoreSobolDimensions, DimensionsAreTheSobolSequence) {
   // Indices in binary order (not Gray code). Dimension 2: v1 = 1/2, v2 = 3/4, v3 = 3/8 (from
   // the recurrence of x^2 + x + 1); dimension 3: v1 = 1/2, v2 = 3/4, v3 = 1/8 (m = 1, 3, 1).
   const double dimension2[] = {0, 0.5, 0.75, 0.25, 0.375, 0.875, 0.625, 0.125};
   const double dimension3[] = {0, 0.5, 0.75, 0.25, 0.125, 0.625, 0.875, 0.375};
   for (uint32_t i = 0; i < 8; ++i) {
-    EXPECT_EQ(sobol_chain_dimension(0, i) / 4294967296.0, dimension2[i]) << i;
-    EXPECT_EQ(sobol_chain_dimension(1, i) / 4294967296.0, dimension3[i]) << i;
+    EXPECT_EQ(sobol_dimension(2, i) / 4294967296.0, dimension2[i]) << i;
+    EXPECT_EQ(sobol_dimension(3, i) / 4294967296.0, dimension3[i]) << i;
   }
   // The byte tables against the definition, a bit at a time (Bratley and Fox's recurrence on
   // the same direction numbers), for every index below 2^16 and random ones up to 2^32.
@@ -92,15 +89,15 @@ TEST(CoreSobolChain, DimensionsAreTheSobolSequence) {
       return result;
     };
     for (uint32_t i = 0; i < (1u << 16); ++i) {
-      ASSERT_EQ(sobol_chain_dimension(k, i), by_definition(i)) << "dimension " << 2 + k << " " << i;
+      ASSERT_EQ(sobol_dimension(2 + k, i), by_definition(i)) << "dimension " << 2 + k << " " << i;
     }
     for (int r = 0; r < 10000; ++r) {
       const uint32_t i = uint32_t(rng());
-      ASSERT_EQ(sobol_chain_dimension(k, i), by_definition(i)) << "dimension " << 2 + k << " " << i;
+      ASSERT_EQ(sobol_dimension(2 + k, i), by_definition(i)) << "dimension " << 2 + k << " " << i;
     }
     // Every dimension is a (0, 1)-sequence: 2^m consecutive points fill the 2^m intervals.
     std::vector<int> cells(256, 0);
-    for (uint32_t i = 0; i < 256; ++i) ++cells[sobol_chain_dimension(k, i) >> 24];
+    for (uint32_t i = 0; i < 256; ++i) ++cells[sobol_dimension(2 + k, i) >> 24];
     for (int c : cells) ASSERT_EQ(c, 1) << "dimension " << 2 + k;
   }
 }
@@ -122,7 +119,7 @@ std::vector<std::vector<double>> chained_values(Sampler& s, int m, glm::ivec2 pi
   return dims;
 }
 
-TEST(CoreSobolChain, ChainedPairsAreStratifiedWithThePairTheyContinue) {
+TEST(CoreSobolDimensions, ChainedPairsAreStratifiedWithThePairTheyContinue) {
   // Owen scrambles and the permutation of the pixel's indices keep the Sobol points' nets, so
   // every projection of a pixel's chained values is as good a net as the unscrambled Sobol
   // dimensions 0-9 it comes from: dimensions 0-3 are a (2, m, 4)-net, the pairs (t, m, 2)-nets
@@ -133,23 +130,23 @@ TEST(CoreSobolChain, ChainedPairsAreStratifiedWithThePairTheyContinue) {
   for (int m : {4, 6}) {
     std::vector<std::vector<double>> sobol(kDimensions);
     for (uint32_t i = 0; i < (1u << m); ++i) {
-      sobol[0].push_back(sobol_dimension0(i) / 4294967296.0);
-      sobol[1].push_back(sobol_dimension1(i) / 4294967296.0);
+      sobol[0].push_back(sobol_dimension(0, i) / 4294967296.0);
+      sobol[1].push_back(sobol_dimension(1, i) / 4294967296.0);
       for (int k = 0; k < kSobolChainDimensions; ++k) {
-        sobol[size_t(2 + k)].push_back(sobol_chain_dimension(k, i) / 4294967296.0);
+        sobol[size_t(2 + k)].push_back(sobol_dimension(2 + k, i) / 4294967296.0);
       }
     }
-    EXPECT_EQ(net_quality4({&sobol[0], &sobol[1], &sobol[2], &sobol[3]}, m), 2) << "m=" << m;
+    EXPECT_EQ(net_quality({&sobol[0], &sobol[1], &sobol[2], &sobol[3]}, m), 2) << "m=" << m;
     SobolSampler s(5, 1 << m);
     for (int pixel = 0; pixel < 3; ++pixel) {
       const auto dims = chained_values(s, m, {pixel, 3 * pixel}, pixel, kChained);
-      EXPECT_EQ(net_quality4({&dims[0], &dims[1], &dims[2], &dims[3]}, m), 2)
+      EXPECT_EQ(net_quality({&dims[0], &dims[1], &dims[2], &dims[3]}, m), 2)
           << "m=" << m << " pixel " << pixel;
       for (int a = 0; a < kDimensions; ++a) {
         for (int b = a + 1; b < kDimensions; ++b) {
-          const int t = net_quality(sobol[size_t(a)], sobol[size_t(b)], m);
+          const int t = net_quality({&sobol[size_t(a)], &sobol[size_t(b)]}, m);
           if (b == a + 1 && a % 2 == 0) EXPECT_LE(t, 2) << "m=" << m << " pair " << a / 2;
-          EXPECT_EQ(net_quality(dims[size_t(a)], dims[size_t(b)], m), t)
+          EXPECT_EQ(net_quality({&dims[size_t(a)], &dims[size_t(b)]}, m), t)
               << "m=" << m << " pixel " << pixel << " dimensions " << a << ", " << b;
         }
       }
@@ -163,7 +160,7 @@ bool chained_is_fresh_pair(Sampler& a, Sampler& b) {
   return u == b.get_2d();
 }
 
-TEST(CoreSobolChain, ChainsEndAndRestartAsDocumented) {
+TEST(CoreSobolDimensions, ChainsEndAndRestartAsDocumented) {
   for (uint32_t i = 0; i < 16; ++i) {
     SobolSampler a(7, 16), b(7, 16);
     a.start_pixel_sample({2, 5}, i);
