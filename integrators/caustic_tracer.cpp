@@ -164,7 +164,7 @@ void CausticTracer::trace(uint32_t sample, uint32_t first, uint32_t last, std::v
       }
       if (bounces == max_specular_bounces_) break;
       const ShadingPoint sp(si, ray, bsdf);
-      const std::optional<BsdfSample> bs = sp.sample(sampler->get_1d(), sampler->get_2d());
+      const std::optional<BsdfSample> bs = sp.sample(sp.lobe_sample(*sampler), sampler->get_2d());
       if (!bs) break;
       // Importance, not radiance, flows along this path: a refraction does not scale it by
       // 1 / eta^2 as the BSDF does for radiance, and shading normals count the other way.

@@ -38,7 +38,7 @@ Rgb DirectEstimator::li(const Ray& ray, Sampler& sampler, AovSample& aovs) const
   if (bsdf.is_black()) return radiance;
   const ShadingPoint sp(si, ray, bsdf);
   if (bsdf.is_delta()) {
-    const float u_lobe = sampler.get_1d();
+    const float u_lobe = sp.lobe_sample(sampler);
     const std::optional<BsdfSample> bs = sp.sample(u_lobe, sampler.get_2d());
     if (!bs) return radiance;
     const Ray next = sp.spawn(bs->wi);

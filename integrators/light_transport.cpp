@@ -75,6 +75,12 @@ float ShadingPoint::pdf(const Vec3& wi_world) const {
   return bsdf->pdf(wo, wi);
 }
 
+float ShadingPoint::lobe_sample(Sampler& sampler) const {
+  if (bsdf->reads_lobe_sample()) return sampler.get_1d();
+  sampler.skip_dimensions(1);
+  return 0.0f;
+}
+
 std::optional<BsdfSample> ShadingPoint::sample(float u_lobe, Vec2 u) const {
   std::optional<BsdfSample> s = bsdf->sample(wo, u_lobe, u);
   if (!s || !(s->pdf > 0.0f)) return std::nullopt;

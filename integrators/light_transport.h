@@ -73,6 +73,9 @@ struct ShadingPoint {
   float pdf(const Vec3& wi_world) const;
   /// A BSDF sample with wi in world space; nothing when it fails or fails the leak check.
   std::optional<BsdfSample> sample(float u_lobe, Vec2 u) const;
+  /// The next value of `sampler` for sample()'s u_lobe when the BSDF reads it; otherwise its
+  /// dimension is skipped, not computed (later dimensions keep their values) and 0 returned.
+  float lobe_sample(Sampler& sampler) const;
   /// A ray leaving the surface along the unit world direction `wi`.
   Ray spawn(const Vec3& wi_world) const;
   /// Whether nothing blocks the segment to the point `distance` along wi (kInfinity: the ray

@@ -256,14 +256,7 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
       }
     }
 
-    // Only a BSDF that chooses between lobes reads u_lobe; for the others its dimension is
-    // skipped, not computed (same values for every later dimension).
-    float u_lobe = 0.0f;
-    if (bsdf.reads_lobe_sample()) {
-      u_lobe = sampler.get_1d();
-    } else {
-      sampler.skip_dimensions(1);
-    }
+    const float u_lobe = sp.lobe_sample(sampler);
     // The first vertex's direction begins a fresh point (chained to the film position it
     // measured worse: relMSE +12% on CBbunny); later ones continue the path's chain.
     const std::optional<BsdfSample> bs =
