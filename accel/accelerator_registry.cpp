@@ -25,6 +25,7 @@ const Registry<Accelerator>& accelerator_registry() {
            "handwritten BVH: bvh.split=median|sah|sbvh (default sah), "
            "bvh.layout=bvh2|bvh4|bvh8 (default bvh8), bvh.bins, bvh.leaf_cost, "
            "bvh.traversal_cost, bvh.max_leaf_size, bvh.sbvh_alpha, bvh.sbvh_budget, "
+           "bvh.reinsertion_passes (0-16, default 2; 0 for median), "
            "bvh.isa=auto|avx512|avx2|generic; "
            "median + bvh2 is the homework's binary BVH",
            &make_bvh_accelerator},

@@ -16,6 +16,7 @@
 #include "accel/brute/brute_accelerator.h"
 #include "accel/bvh/binned_sah_builder.h"
 #include "accel/bvh/cpu_features.h"
+#include "accel/bvh/reinsertion_optimizer.h"
 #include "accel/bvh/spatial_split_builder.h"
 #include "accel/bvh/wide_bvh.h"
 #include "accel/bvh/wide_bvh_accelerator.h"
@@ -328,6 +329,34 @@ TEST(AccelWideBvh, BuildersProduceValidTrees) {
   }
 }
 
+double interior_area(const BinaryBvh& bvh) {
+  double sum = 0.0;
+  for (size_t i = 0; i < bvh.node_count; ++i) {
+    if (!bvh.nodes[i].is_leaf()) sum += bvh.nodes[i].bounds().area();
+  }
+  return sum;
+}
+
+TEST(AccelWideBvh, ReinsertionKeepsEveryLeafAndLowersTheInteriorArea) {
+  size_t total_moves = 0;
+  for (const NamedScene& scene : make_scenes()) {
+    SCOPED_TRACE(scene.name);
+    BvhBuildSettings s;
+    BinaryBvh bvh =
+        build_object_split_bvh(make_prim_refs(scene.geometry), scene.geometry.sphere_geom_id(), s);
+    const std::vector<PrimRef> refs = bvh.refs;
+    const size_t nodes = bvh.node_count;
+    const double before = interior_area(bvh);
+    total_moves += optimize_by_reinsertion(bvh, 2);
+    check_binary_tree(bvh, scene.geometry, false);
+    EXPECT_EQ(bvh.node_count, nodes);
+    EXPECT_LE(interior_area(bvh), before * (1.0 + 1e-6));
+    ASSERT_EQ(bvh.refs.size(), refs.size());
+    EXPECT_EQ(0, std::memcmp(bvh.refs.data(), refs.data(), refs.size() * sizeof(PrimRef)));
+  }
+  EXPECT_GT(total_moves, 0u);  // the test scenes leave the optimizer something to do
+}
+
 // More references than the builders' parallel thresholds (64k for binning and for SBVH's
 // clipping bins, 4096 for recursion): the parallel paths run, and the tree is the same on one
 // thread as on four, node for node and block for block. ThreadSanitizer runs this test (label
@@ -409,11 +438,9 @@ TEST(AccelWideBvh, RejectsBadParameters) {
     }
     return ErrorKind::kInternal;
   };
-  const std::pair<const char*, const char*> bad_values[] = {{"bvh.split", "octree"},
-                                                            {"bvh.layout", "bvh16"},
-                                                            {"bvh.bins", "1"},
-                                                            {"bvh.max_leaf_size", "65"},
-                                                            {"bvh.isa", "neon"}};
+  const std::pair<const char*, const char*> bad_values[] = {
+      {"bvh.split", "octree"},     {"bvh.layout", "bvh16"},          {"bvh.bins", "1"},
+      {"bvh.max_leaf_size", "65"}, {"bvh.reinsertion_passes", "17"}, {"bvh.isa", "neon"}};
   for (const auto& [key, value] : bad_values) {
     ParamSet params;
     params.set(key, value);

@@ -44,6 +44,7 @@ struct BvhBuildSettings {
   int max_leaf_size = 64;       ///< primitives per leaf, at most kMaxLeafPrimitives
   float spatial_alpha = 1e-5f;  ///< try spatial splits when child overlap > alpha * root area
   float spatial_budget = 0.5f;  ///< extra references spatial splits may add, x primitive count
+  int reinsertion_passes = 2;   ///< rounds of optimize_by_reinsertion() after the build
 };
 
 /// Primitives per SIMD block in a leaf; SAH charges leaves per started block.

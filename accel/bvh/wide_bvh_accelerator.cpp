@@ -5,6 +5,7 @@
 #include "accel/bvh/binned_sah_builder.h"
 #include "accel/bvh/cpu_features.h"
 #include "accel/bvh/homework/homework_bvh_accelerator.h"
+#include "accel/bvh/reinsertion_optimizer.h"
 #include "accel/bvh/spatial_split_builder.h"
 #include "core/error.h"
 
@@ -47,6 +48,7 @@ WideBvhOptions parse_wide_bvh_options(const ParamSet& params) {
   if (split == "median") {
     o.build.split = SplitMethod::kMedian;
     o.build.max_leaf_size = 4;
+    o.build.reinsertion_passes = 0;  // the textbook tree, as the homework builds it
   } else if (split == "sah") {
     o.build.split = SplitMethod::kSah;
   } else if (split == "sbvh") {
@@ -71,6 +73,8 @@ WideBvhOptions parse_wide_bvh_options(const ParamSet& params) {
       static_cast<float>(params.get_float("bvh.sbvh_alpha", o.build.spatial_alpha, 0.0, 1.0));
   o.build.spatial_budget =
       static_cast<float>(params.get_float("bvh.sbvh_budget", o.build.spatial_budget, 0.0, 4.0));
+  o.build.reinsertion_passes =
+      static_cast<int>(params.get_int("bvh.reinsertion_passes", o.build.reinsertion_passes, 0, 16));
   o.isa = params.get_string("bvh.isa", "auto");
   if (o.isa != "auto" && o.isa != "avx512" && o.isa != "avx2" && o.isa != "generic") {
     throw Error(ErrorKind::kUsage,
@@ -108,10 +112,11 @@ void WideBvhAccelerator::build_structure(const SceneGeometry& geometry) {
   tree_ = std::monostate{};
   empty_ = true;
   std::vector<PrimRef> refs = make_prim_refs(geometry);
-  const BinaryBvh binary =
+  BinaryBvh binary =
       options_.build.split == SplitMethod::kSpatial
           ? build_spatial_split_bvh(geometry, std::move(refs), options_.build)
           : build_object_split_bvh(std::move(refs), geometry.sphere_geom_id(), options_.build);
+  optimize_by_reinsertion(binary, options_.build.reinsertion_passes);
   switch (options_.width) {
     case 2:
       tree_ = collapse_to_wide<2>(binary, geometry);
