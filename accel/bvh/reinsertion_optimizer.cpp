@@ -7,9 +7,10 @@ namespace prism {
 namespace {
 
 constexpr int kNone = -1;
-/// Each pass tries the largest 1 / kCandidateShare of the nodes, and at least kMinCandidates.
-constexpr size_t kCandidateShare = 8;
-constexpr size_t kMinCandidates = 1024;
+/// Each pass tries the kCandidates largest nodes. Measured on the CS184 meshes (2026-12-04),
+/// trying the largest eighth of the nodes bought no more than these; on meshes of 100k
+/// triangles and more the search, which is serial, would cost more than the build itself.
+constexpr size_t kCandidates = 1024;
 
 Bounds3 united(Bounds3 a, const Bounds3& b) {
   a.extend(b);
@@ -41,7 +42,7 @@ class LinkedTree {
     }
   }
 
-  /// One round over the largest nodes but the root and its children, largest first.
+  /// One round over the kCandidates largest nodes but the root and its children, largest first.
   size_t pass() {
     std::vector<int> order;
     for (int i = 0; i < static_cast<int>(box_.size()); ++i) {
@@ -49,13 +50,14 @@ class LinkedTree {
     }
     std::vector<float> area(box_.size());
     for (size_t i = 0; i < box_.size(); ++i) area[i] = box_[i].area();
-    // The largest nodes are where a move saves most; past kCandidateShare of the tree the
-    // moves pay little for their search time (build time on large meshes).
-    const size_t tried =
-        std::min(order.size(), std::max(kMinCandidates, order.size() / kCandidateShare));
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(tried),
-                      order.end(),
-                      [&](int a, int b) { return area[a] != area[b] ? area[a] > area[b] : a < b; });
+    // The largest nodes are where a move saves most.
+    const size_t tried = std::min(order.size(), kCandidates);
+    const auto larger = [&](int a, int b) {
+      return area[a] != area[b] ? area[a] > area[b] : a < b;
+    };
+    const auto cut = order.begin() + static_cast<std::ptrdiff_t>(tried);
+    std::nth_element(order.begin(), cut, order.end(), larger);
+    std::sort(order.begin(), cut, larger);
     order.resize(tried);
     size_t moves = 0;
     for (int node : order) {

@@ -7,8 +7,8 @@
 
 namespace prism {
 
-/// Runs `passes` rounds of reinsertion over `bvh`: each round takes the interior nodes and
-/// leaves in order of decreasing area, removes each from the tree and puts it back as the
+/// Runs `passes` rounds of reinsertion over `bvh`: each round takes the 1024 largest interior
+/// nodes and leaves in order of decreasing area, removes each from the tree and puts it back as the
 /// sibling of the node where the surface area of the interior nodes grows least, when that is
 /// less than the removal saved. Leaves keep their references, so `bvh.refs` is untouched; the
 /// nodes are renumbered (node 0 the root, children adjacent). A tree that would grow deeper
