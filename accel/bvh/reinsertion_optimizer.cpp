@@ -60,13 +60,28 @@ class LinkedTree {
     std::sort(order.begin(), cut, larger);
     order.resize(tried);
     size_t moves = 0;
+    // Moves made earlier in the pass can turn a candidate into the root or a child of it.
     for (int node : order) {
       if (parent_[node] != kNone && parent_[node] != root_ && reinsert(node)) ++moves;
     }
     return moves;
   }
 
-  int depth() const { return depth_below(root_); }
+  /// Levels of the tree, the root's counted.
+  int depth() const {
+    int deepest = 0;
+    std::vector<std::pair<int, int>> stack{{root_, 1}};
+    while (!stack.empty()) {
+      const auto [n, d] = stack.back();
+      stack.pop_back();
+      deepest = std::max(deepest, d);
+      if (left_[n] != kNone) {
+        stack.push_back({left_[n], d + 1});
+        stack.push_back({right_[n], d + 1});
+      }
+    }
+    return deepest;
+  }
 
   /// Writes the tree back in BinaryBvh's layout: root 0, children adjacent, in depth-first order.
   void write(BinaryBvh& bvh) const {
@@ -91,21 +106,6 @@ class LinkedTree {
   }
 
  private:
-  int depth_below(int node) const {
-    int deepest = 0;
-    std::vector<std::pair<int, int>> stack{{node, 1}};
-    while (!stack.empty()) {
-      const auto [n, d] = stack.back();
-      stack.pop_back();
-      deepest = std::max(deepest, d);
-      if (left_[n] != kNone) {
-        stack.push_back({left_[n], d + 1});
-        stack.push_back({right_[n], d + 1});
-      }
-    }
-    return deepest;
-  }
-
   int sibling(int node) const {
     const int p = parent_[node];
     return left_[p] == node ? right_[p] : left_[p];
@@ -207,7 +207,7 @@ class LinkedTree {
 }  // namespace
 
 size_t optimize_by_reinsertion(BinaryBvh& bvh, int passes) {
-  if (bvh.node_count < 7 || passes <= 0) return 0;
+  if (bvh.node_count == 0 || passes <= 0) return 0;
   LinkedTree tree(bvh);
   size_t moves = 0;
   for (int i = 0; i < passes; ++i) {
