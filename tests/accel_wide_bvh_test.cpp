@@ -357,6 +357,48 @@ TEST(AccelWideBvh, ReinsertionKeepsEveryLeafAndLowersTheInteriorArea) {
   EXPECT_GT(total_moves, 0u);  // the test scenes leave the optimizer something to do
 }
 
+// A room of five walls (two large triangles each) around a detailed mesh, as the CS184 Cornell
+// scenes are: the walls' node is as large as the root, so nearly every ray enters it, and the
+// builders must find the splits that give each wall its own thin box, however few triangles
+// that node holds (sah::bins_for() with the node's share of the root's area).
+TEST(AccelWideBvh, RoomWallsAroundADetailedMeshGetLeavesOfTheirOwn) {
+  SceneGeometry g;
+  TriangleMesh walls;
+  walls.name = "walls";
+  const auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    const auto base = static_cast<uint32_t>(walls.positions.size());
+    walls.positions.insert(walls.positions.end(), {a, b, c, d});
+    walls.triangles.push_back({base, base + 1, base + 2});
+    walls.triangles.push_back({base, base + 2, base + 3});
+  };
+  quad(Vec3(-1, -1, -1), Vec3(1, -1, -1), Vec3(1, 1, -1), Vec3(-1, 1, -1));  // floor
+  quad(Vec3(-1, -1, 1), Vec3(-1, 1, 1), Vec3(1, 1, 1), Vec3(1, -1, 1));      // ceiling
+  quad(Vec3(-1, 1, -1), Vec3(1, 1, -1), Vec3(1, 1, 1), Vec3(-1, 1, 1));      // back
+  quad(Vec3(-1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, 1, 1), Vec3(-1, -1, 1));  // left
+  quad(Vec3(1, -1, -1), Vec3(1, -1, 1), Vec3(1, 1, 1), Vec3(1, 1, -1));      // right
+  g.meshes.push_back(std::move(walls));
+  g.meshes.push_back(generated(GeneratedMeshKind::kSphere, 20000, 3, Vec3(0, 0, -0.6f), 0.35f));
+  g.finalize();
+  for (const SplitMethod split : {SplitMethod::kSah, SplitMethod::kSpatial}) {
+    SCOPED_TRACE(split_name(split));
+    BvhBuildSettings s;
+    s.split = split;
+    const BinaryBvh bvh = split == SplitMethod::kSpatial
+                              ? build_spatial_split_bvh(g, make_prim_refs(g), s)
+                              : build_object_split_bvh(make_prim_refs(g), g.sphere_geom_id(), s);
+    const float root_area = bvh.nodes[0].bounds().area();
+    size_t wall_leaves = 0;
+    for (size_t i = 0; i < bvh.node_count; ++i) {
+      const BinaryNode& node = bvh.nodes[i];
+      if (!node.is_leaf() || node.bounds().area() < 0.25f * root_area) continue;
+      ++wall_leaves;
+      EXPECT_LE(node.count, 2u) << "a leaf as large as the room holds " << node.count
+                                << " triangles: more than one wall";
+    }
+    EXPECT_GE(wall_leaves, 3u);
+  }
+}
+
 // More references than the builders' parallel thresholds (64k for binning and for SBVH's
 // clipping bins, 4096 for recursion): the parallel paths run, and the tree is the same on one
 // thread as on four, node for node and block for block. ThreadSanitizer runs this test (label

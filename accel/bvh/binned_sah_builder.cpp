@@ -46,6 +46,7 @@ class ObjectSplitBuilder {
   size_t build(size_t n) {
     const sah::RangeInfo info = range_info(refs_, n);
     nodes_[0].set_bounds(info.geom.bounds());
+    root_half_area_ = info.geom.half_area();
     next_node_ = 1;
     build_node(0, 0, static_cast<uint32_t>(n), info, 0);
     return next_node_.load();
@@ -120,11 +121,12 @@ class ObjectSplitBuilder {
     sah::RangeInfo left_info, right_info;
     bool partitioned = false;
     if (settings_.split == SplitMethod::kSah && depth < kBalancedDepth) {
-      const sah::BinMapping map(info.cent, sah::bins_for(n, settings_.bins));
-      const sah::ObjectSplit best = best_split(begin, end, map);
       const float area = info.geom.half_area();
+      const sah::BinMapping map(info.cent,
+                                sah::bins_for(n, settings_.bins, area / root_half_area_));
+      const sah::ObjectSplit best = best_split(begin, end, map);
       const float leaf_cost = settings_.leaf_cost * static_cast<float>(leaf_blocks(n));
-      if (n <= max_leaf) {
+      if (n <= max_leaf && sah::may_be_leaf(n, area / root_half_area_)) {
         const float split_cost =
             best.valid() && area > 0.0f
                 ? settings_.traversal_cost + settings_.leaf_cost * best.cost / area
@@ -180,6 +182,7 @@ class ObjectSplitBuilder {
   uint32_t sphere_geom_id_;
   const BvhBuildSettings& settings_;
   BinaryNode* nodes_;
+  float root_half_area_ = 0.0f;
   std::atomic<uint32_t> next_node_{0};
 };
 

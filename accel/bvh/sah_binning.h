@@ -220,4 +220,33 @@ inline int bins_for(size_t n, int max_bins) {
   return static_cast<int>(std::clamp<size_t>(n / 2, 4, static_cast<size_t>(max_bins)));
 }
 
+// Nodes that most rays reach. SAH weighs a node by its share of the root's area (the share of
+// rays that reach it), but binning and the leaf decision look only at the node's references,
+// and a few large triangles near the root (a room's walls around a detailed mesh, as in the
+// CS184 Cornell scenes) defeat both: n / 2 bins across a handful of centroids miss the splits
+// that give each wall its own thin box, and the leaf cost, a block test against a binary
+// split's traversal, ignores that after the collapse to 8-wide nodes that split costs a few
+// lanes of a box test the parent makes anyway. A room-sized leaf is then tested by nearly every
+// ray. Measured in docs/PERFORMANCE.md ("Nodes that most rays reach"): CBbunny's SAH cost 22.4
+// -> 8.3, its shadow rays from 0.78x Embree's speed to 1.06-1.13x; the build time of
+// 1M-triangle meshes within noise, since few nodes are that large.
+
+/// Nodes with at least this share of the root's area are binned with every bin.
+inline constexpr float kManyRaysAreaFraction = 0.01f;
+/// Nodes with at least this share of the root's area become leaves only when they hold at most
+/// kLargeLeafPrimitives references (two triangles: one wall).
+inline constexpr float kLargeLeafAreaFraction = 0.2f;
+inline constexpr size_t kLargeLeafPrimitives = 2;
+
+/// bins_for() for a node whose box has `area_fraction` of the root box's area.
+inline int bins_for(size_t n, int max_bins, float area_fraction) {
+  return area_fraction >= kManyRaysAreaFraction ? max_bins : bins_for(n, max_bins);
+}
+
+/// Whether SAH may make a leaf of a node of n references whose box has `area_fraction` of the
+/// root box's area (it still may split it, as always).
+inline bool may_be_leaf(size_t n, float area_fraction) {
+  return area_fraction < kLargeLeafAreaFraction || n <= kLargeLeafPrimitives;
+}
+
 }  // namespace prism::sah
