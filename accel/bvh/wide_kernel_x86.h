@@ -208,35 +208,29 @@ PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<2>& node, const NodeR
   return static_cast<uint32_t>(_mm_movemask_ps(_mm_cmp_ps(tn, tf, _CMP_LE_OQ))) & 3u;
 }
 
-/// The watertight test's per-ray constants, broadcast; the origin is permuted like the axes.
+/// The watertight test's per-ray constants: a view of the RaySetup, whose scalars the triangle
+/// test broadcasts where it uses them (a broadcast from memory is one load). Broadcasting them
+/// once per ray instead cost seven vector stores per ray, since the closest-hit loop calls its
+/// leaves out of line and keeps the vectors in memory anyway: measured in docs/PERFORMANCE.md
+/// ("The per-ray set-up").
 struct TriangleRay {
-  TriangleRay(const RaySetup& q, const Ray& r)
-      : ox(_mm256_set1_ps(q.org[q.kx])),
-        oy(_mm256_set1_ps(q.org[q.ky])),
-        oz(_mm256_set1_ps(q.org[q.kz])),
-        sx(_mm256_set1_ps(q.shear_x)),
-        sy(_mm256_set1_ps(q.shear_y)),
-        sz(_mm256_set1_ps(q.shear_z)),
-        tmin(_mm256_set1_ps(q.tmin)),
-        kx(q.kx),
-        ky(q.ky),
-        kz(q.kz) {
-    // The scalar test's constants, the same values setup_ray() computed.
-    watertight.origin = Vec3(q.org[0], q.org[1], q.org[2]);
-    watertight.kx = q.kx;
-    watertight.ky = q.ky;
-    watertight.kz = q.kz;
-    watertight.shear_x = q.shear_x;
-    watertight.shear_y = q.shear_y;
-    watertight.shear_z = q.shear_z;
-    watertight.tmin = q.tmin;
-    watertight.tmax = q.tmax;
-    (void)r;
+  TriangleRay(const RaySetup& q, const Ray&) : setup(q) {}
+  /// For the scalar code: the whole test of lanes with a zero edge function, with the same
+  /// values setup_ray() computed.
+  WatertightRay watertight(float tmax) const {
+    WatertightRay w;
+    w.origin = Vec3(setup.org[0], setup.org[1], setup.org[2]);
+    w.kx = setup.kx;
+    w.ky = setup.ky;
+    w.kz = setup.kz;
+    w.shear_x = setup.shear_x;
+    w.shear_y = setup.shear_y;
+    w.shear_z = setup.shear_z;
+    w.tmin = setup.tmin;
+    w.tmax = tmax;
+    return w;
   }
-  __m256 ox, oy, oz, sx, sy, sz, tmin;
-  int kx, ky, kz;
-  /// For the scalar code: the whole test of lanes with a zero edge function.
-  WatertightRay watertight;
+  const RaySetup& setup;
 };
 
 // One template serves one block (4 lanes, __m128) and two blocks at once (8 lanes, __m256);
@@ -282,7 +276,6 @@ struct Lanes;
 template <>
 struct Lanes<__m128> {
   static constexpr int kCount = 4;
-  static __m128 narrow(__m256 a) { return _mm256_castps256_ps128(a); }
   static __m128 set1(float x) { return _mm_set1_ps(x); }
   /// Every bit of a lane set to the lane's sign bit.
   static __m128 sign_mask(__m128 a) {
@@ -300,7 +293,6 @@ struct Lanes<__m128> {
 template <>
 struct Lanes<__m256> {
   static constexpr int kCount = 8;
-  static __m256 narrow(__m256 a) { return a; }
   static __m256 set1(float x) { return _mm256_set1_ps(x); }
   static __m256 sign_mask(__m256 a) {
     return _mm256_castsi256_ps(_mm256_srai_epi32(_mm256_castps_si256(a), 31));
@@ -356,8 +348,8 @@ PRISM_KERNEL_INLINE int double_hit_parameters(const V* const sheared[9], int can
   int mask = 0;
   for (int first = 0; first < kCount; first += 4) {
     if (((candidates >> first) & 15) == 0) continue;
-    mask |= double_hit_parameters4(&s[0][first], kCount, ray.watertight.shear_z,
-                                   ray.watertight.tmin, tmax, t + first, u + first, v + first)
+    mask |= double_hit_parameters4(&s[0][first], kCount, ray.setup.shear_z, ray.setup.tmin, tmax,
+                                   t + first, u + first, v + first)
             << first;
   }
   return mask & candidates;
@@ -374,17 +366,19 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
                                              const TriangleRay& ray, float tmax, WideHit& hit,
                                              bool any_hit) {
   using L = Lanes<V>;
-  const V oz = L::narrow(ray.oz), ox = L::narrow(ray.ox), oy = L::narrow(ray.oy);
-  const V sx = L::narrow(ray.sx), sy = L::narrow(ray.sy);
-  const V az = vsub(L::load(blocks, 0, ray.kz), oz);
-  const V bz = vsub(L::load(blocks, 1, ray.kz), oz);
-  const V cz = vsub(L::load(blocks, 2, ray.kz), oz);
-  const V ax = vadd(vsub(L::load(blocks, 0, ray.kx), ox), vmul(sx, az));
-  const V ay = vadd(vsub(L::load(blocks, 0, ray.ky), oy), vmul(sy, az));
-  const V bx = vadd(vsub(L::load(blocks, 1, ray.kx), ox), vmul(sx, bz));
-  const V by = vadd(vsub(L::load(blocks, 1, ray.ky), oy), vmul(sy, bz));
-  const V cx = vadd(vsub(L::load(blocks, 2, ray.kx), ox), vmul(sx, cz));
-  const V cy = vadd(vsub(L::load(blocks, 2, ray.ky), oy), vmul(sy, cz));
+  const RaySetup& q = ray.setup;
+  const int kx = q.kx, ky = q.ky, kz = q.kz;
+  const V oz = L::set1(q.org[kz]), ox = L::set1(q.org[kx]), oy = L::set1(q.org[ky]);
+  const V sx = L::set1(q.shear_x), sy = L::set1(q.shear_y);
+  const V az = vsub(L::load(blocks, 0, kz), oz);
+  const V bz = vsub(L::load(blocks, 1, kz), oz);
+  const V cz = vsub(L::load(blocks, 2, kz), oz);
+  const V ax = vadd(vsub(L::load(blocks, 0, kx), ox), vmul(sx, az));
+  const V ay = vadd(vsub(L::load(blocks, 0, ky), oy), vmul(sy, az));
+  const V bx = vadd(vsub(L::load(blocks, 1, kx), ox), vmul(sx, bz));
+  const V by = vadd(vsub(L::load(blocks, 1, ky), oy), vmul(sy, bz));
+  const V cx = vadd(vsub(L::load(blocks, 2, kx), ox), vmul(sx, cz));
+  const V cy = vadd(vsub(L::load(blocks, 2, ky), oy), vmul(sy, cz));
 
   const V e0 = vsub(vmul(bx, cy), vmul(by, cx));
   const V e1 = vsub(vmul(cx, ay), vmul(cy, ax));
@@ -407,7 +401,7 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   // e_i is off by at most 2 eps (|x y| + |x' y'|) =: 2 eps E_i, so T = sum e_i z_i by about
   // eps sum E_i |z_i| and det by eps sum E_i, each plus a few eps of itself; t = T s / det.
   const V sign = L::set1(-0.0f);
-  const V sz = L::narrow(ray.sz);
+  const V sz = L::set1(q.shear_z);
   const V t_num = vadd(vadd(vmul(e0, az), vmul(e1, bz)), vmul(e2, cz));
   const V inv_det = vdiv(L::set1(1.0f), det);
   const V t = vmul(vmul(t_num, sz), inv_det);
@@ -423,7 +417,7 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
       vmul(L::set1(kTErrorScale), vabs(t)));
   // NaN t (det 0, infinities) compares false both ways: such lanes go to the scalar test.
   const V out_of_range = vor(vcmp<_CMP_GT_OQ>(vsub(t, t_error), L::set1(tmax)),
-                             vcmp<_CMP_LT_OQ>(vadd(t, t_error), L::narrow(ray.tmin)));
+                             vcmp<_CMP_LT_OQ>(vadd(t, t_error), L::set1(q.tmin)));
   const V ok =
       vandnot(vor(vor(L::sign_mask(outside), special), out_of_range), vcmp<_CMP_NEQ_UQ>(det, zero));
   const int mask = vmask(ok);
@@ -433,7 +427,7 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   // it between the float tmin and tmax), so the answer is known without the double step. The
   // same bound the filter above relies on; the answer is still brute force's.
   if (any_hit && mask != 0) {
-    const V surely_in_range = vand(vcmp<_CMP_GE_OQ>(vsub(t, t_error), L::narrow(ray.tmin)),
+    const V surely_in_range = vand(vcmp<_CMP_GE_OQ>(vsub(t, t_error), L::set1(q.tmin)),
                                    vcmp<_CMP_LE_OQ>(vadd(t, t_error), L::set1(tmax)));
     if ((vmask(surely_in_range) & mask) != 0) return true;
   }
@@ -442,7 +436,6 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   // The lanes the ray passes through take t, u, v in double precision, four lanes at a time, as
   // intersect_triangle() does one; lanes with a zero edge function take the whole scalar test.
   // Either way the bits are brute force's.
-  WatertightRay w = ray.watertight;
   bool found = false;
   if (mask != 0) {
     alignas(32) float lane_t[L::kCount], lane_u[L::kCount], lane_v[L::kCount];
@@ -461,9 +454,8 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   }
   for (unsigned z = static_cast<unsigned>(special_mask); z != 0; z &= z - 1) {
     const int lane = lowest_lane(z);
-    w.tmax = tmax;
     PrimitiveHit h;
-    if (!intersect_block_lane(w, *blocks[lane >> 2], lane & 3, h)) continue;
+    if (!intersect_block_lane(ray.watertight(tmax), *blocks[lane >> 2], lane & 3, h)) continue;
     if (any_hit) return true;
     if (!comes_before_hit(h.t, geom(lane), prim(lane), hit)) continue;
     tmax = h.t;
