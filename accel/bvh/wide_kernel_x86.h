@@ -90,47 +90,23 @@ PRISM_KERNEL_INLINE int near_row(unsigned octant, int axis) {
   return 2 * axis + static_cast<int>((octant >> axis) & 1u);
 }
 
-/// The box test's per-ray constants, with the rows of the near and far planes of each axis (by
-/// the ray's octant). kOctant is always kRuntimeOctant here (see below).
+/// The box test's per-ray constants, for every width: the RaySetup, whose scalars the box test
+/// broadcasts where it uses them (an FMA's broadcast operand, or one load), and the rows of the
+/// near and far planes of each axis (by the ray's octant). kOctant is always kRuntimeOctant here
+/// (see below). The closest-hit loop calls its leaves out of line, which clobbers every vector
+/// register, so the loop reloaded the constants from the stack at each node anyway; broadcasting
+/// them once per ray only added ten vector stores per ray (docs/PERFORMANCE.md, "The per-ray
+/// set-up").
 template <int W, unsigned kOctant>
-struct NodeRay;
-
-template <unsigned kOctant>
-struct NodeRay<8, kOctant> {
-  explicit NodeRay(const RaySetup& s) : tmin(_mm256_set1_ps(s.tmin)) {
+struct NodeRay {
+  explicit NodeRay(const RaySetup& s) : setup(s) {
     for (int a = 0; a < 3; ++a) {
-      inv[a] = _mm256_set1_ps(s.inv[a]);
-      near_offset[a] = _mm256_set1_ps(s.near_offset[a]);
-      far_offset[a] = _mm256_set1_ps(s.far_offset[a]);
       near_plane[a] = near_row(s.octant, a);
       far_plane[a] = near_plane[a] ^ 1;
     }
   }
-  __m256 inv[3], near_offset[3], far_offset[3];
-  __m256 tmin;
+  const RaySetup& setup;
   int near_plane[3], far_plane[3];  ///< WideNode::bounds rows of the near and far planes
-};
-
-template <unsigned kOctant>
-struct NodeRay<4, kOctant> {
-  explicit NodeRay(const RaySetup& s) : tmin(_mm_set1_ps(s.tmin)) {
-    for (int a = 0; a < 3; ++a) {
-      inv[a] = _mm_set1_ps(s.inv[a]);
-      near_offset[a] = _mm_set1_ps(s.near_offset[a]);
-      far_offset[a] = _mm_set1_ps(s.far_offset[a]);
-      near_plane[a] = near_row(s.octant, a);
-      far_plane[a] = near_plane[a] ^ 1;
-    }
-  }
-  __m128 inv[3], near_offset[3], far_offset[3];
-  __m128 tmin;
-  int near_plane[3], far_plane[3];
-};
-
-/// The binary layout uses the low two lanes of the 4-wide test.
-template <unsigned kOctant>
-struct NodeRay<2, kOctant> : NodeRay<4, kOctant> {
-  using NodeRay<4, kOctant>::NodeRay;
 };
 
 /// The x86 kernels take the ray's octant at run time: the near and far rows come from the
@@ -145,13 +121,15 @@ inline constexpr bool kKernelUsesRuntimeOctant = true;
 template <unsigned kOctant>
 PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<8>& node, const NodeRay<8, kOctant>& ray,
                                             float tmax, float* tnear) {
-  __m256 tn = ray.tmin;
+  const RaySetup& s = ray.setup;
+  __m256 tn = _mm256_broadcast_ss(&s.tmin);
   __m256 tf = _mm256_set1_ps(tmax);
   for (int a = 0; a < 3; ++a) {
-    const __m256 n = _mm256_fmadd_ps(_mm256_load_ps(node.bounds[ray.near_plane[a]]), ray.inv[a],
-                                     ray.near_offset[a]);
-    const __m256 f = _mm256_fmadd_ps(_mm256_load_ps(node.bounds[ray.far_plane[a]]), ray.inv[a],
-                                     ray.far_offset[a]);
+    const __m256 inv = _mm256_broadcast_ss(&s.inv[a]);
+    const __m256 n = _mm256_fmadd_ps(_mm256_load_ps(node.bounds[ray.near_plane[a]]), inv,
+                                     _mm256_broadcast_ss(&s.near_offset[a]));
+    const __m256 f = _mm256_fmadd_ps(_mm256_load_ps(node.bounds[ray.far_plane[a]]), inv,
+                                     _mm256_broadcast_ss(&s.far_offset[a]));
     tn = _mm256_max_ps(n, tn);
     tf = _mm256_min_ps(f, tf);
   }
@@ -166,13 +144,15 @@ PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<8>& node, const NodeR
 template <unsigned kOctant>
 PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<4>& node, const NodeRay<4, kOctant>& ray,
                                             float tmax, float* tnear) {
-  __m128 tn = ray.tmin;
+  const RaySetup& s = ray.setup;
+  __m128 tn = _mm_broadcast_ss(&s.tmin);
   __m128 tf = _mm_set1_ps(tmax);
   for (int a = 0; a < 3; ++a) {
-    const __m128 n =
-        _mm_fmadd_ps(_mm_load_ps(node.bounds[ray.near_plane[a]]), ray.inv[a], ray.near_offset[a]);
-    const __m128 f =
-        _mm_fmadd_ps(_mm_load_ps(node.bounds[ray.far_plane[a]]), ray.inv[a], ray.far_offset[a]);
+    const __m128 inv = _mm_broadcast_ss(&s.inv[a]);
+    const __m128 n = _mm_fmadd_ps(_mm_load_ps(node.bounds[ray.near_plane[a]]), inv,
+                                  _mm_broadcast_ss(&s.near_offset[a]));
+    const __m128 f = _mm_fmadd_ps(_mm_load_ps(node.bounds[ray.far_plane[a]]), inv,
+                                  _mm_broadcast_ss(&s.far_offset[a]));
     tn = _mm_max_ps(n, tn);
     tf = _mm_min_ps(f, tf);
   }
@@ -191,13 +171,15 @@ PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<2>& node, const NodeR
   auto load2 = [](const float* p) {
     return _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)));
   };
-  __m128 tn = ray.tmin;
+  const RaySetup& s = ray.setup;
+  __m128 tn = _mm_broadcast_ss(&s.tmin);
   __m128 tf = _mm_set1_ps(tmax);
   for (int a = 0; a < 3; ++a) {
-    const __m128 n =
-        _mm_fmadd_ps(load2(node.bounds[ray.near_plane[a]]), ray.inv[a], ray.near_offset[a]);
-    const __m128 f =
-        _mm_fmadd_ps(load2(node.bounds[ray.far_plane[a]]), ray.inv[a], ray.far_offset[a]);
+    const __m128 inv = _mm_broadcast_ss(&s.inv[a]);
+    const __m128 n = _mm_fmadd_ps(load2(node.bounds[ray.near_plane[a]]), inv,
+                                  _mm_broadcast_ss(&s.near_offset[a]));
+    const __m128 f = _mm_fmadd_ps(load2(node.bounds[ray.far_plane[a]]), inv,
+                                  _mm_broadcast_ss(&s.far_offset[a]));
     tn = _mm_max_ps(n, tn);
     tf = _mm_min_ps(f, tf);
   }
@@ -209,10 +191,7 @@ PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<2>& node, const NodeR
 }
 
 /// The watertight test's per-ray constants: a view of the RaySetup, whose scalars the triangle
-/// test broadcasts where it uses them (a broadcast from memory is one load). Broadcasting them
-/// once per ray instead cost seven vector stores per ray, since the closest-hit loop calls its
-/// leaves out of line and keeps the vectors in memory anyway: measured in docs/PERFORMANCE.md
-/// ("The per-ray set-up").
+/// test broadcasts where it uses them, as NodeRay does.
 struct TriangleRay {
   TriangleRay(const RaySetup& q, const Ray&) : setup(q) {}
   /// For the scalar code: the whole test of lanes with a zero edge function, with the same
