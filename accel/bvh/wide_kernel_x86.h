@@ -178,8 +178,8 @@ PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<2>& node, const NodeR
     const __m128 inv = _mm_broadcast_ss(&s.inv[a]);
     const __m128 n = _mm_fmadd_ps(load2(node.bounds[ray.near_plane[a]]), inv,
                                   _mm_broadcast_ss(&s.near_offset[a]));
-    const __m128 f = _mm_fmadd_ps(load2(node.bounds[ray.far_plane[a]]), inv,
-                                  _mm_broadcast_ss(&s.far_offset[a]));
+    const __m128 f =
+        _mm_fmadd_ps(load2(node.bounds[ray.far_plane[a]]), inv, _mm_broadcast_ss(&s.far_offset[a]));
     tn = _mm_max_ps(n, tn);
     tf = _mm_min_ps(f, tf);
   }
