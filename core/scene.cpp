@@ -20,6 +20,23 @@ const float kSphereTestGamma = rounding_gamma(8);
 // The ends of a shadow ray: the target is rebuilt from a light point, a distance and a
 // direction, with about 9 u of the largest coordinate of either end.
 const float kTargetGamma = rounding_gamma(16);
+// Clearance of the wide BVH's box padding (kBoxPaddingUlps of the larger of |origin| and the
+// scene's scale), with a quarter to spare for the origin's own move and rounding.
+const float kBoxClearanceGamma = rounding_gamma(static_cast<int>(kBoxPaddingUlps * 1.25f));
+// The clearance is at most this many times a triangle test's own error at the point.
+constexpr float kMaxClearanceFactor = 4.0f;
+
+/// A triangle point's error bound `error` widened, on every axis, toward the wide BVH's box
+/// padding, but to at most kMaxClearanceFactor times `test_error` (the triangle test's share of
+/// the bound): a ray leaving a large flat triangle (a wall, a floor) then starts outside the
+/// padded, flat box of that triangle's leaf instead of inside it, and the BVH does not test that
+/// leaf again for a hit the offset already rules out (docs/RELIABILITY.md, "Geometric
+/// robustness"; docs/PERFORMANCE.md, "Rays leaving large flat triangles"). Small triangles and
+/// points far from the world origin, whose bound the padding dwarfs, keep theirs.
+Vec3 with_box_clearance(const Vec3& p, const Vec3& error, float test_error, float scene_scale) {
+  const float gap = kBoxClearanceGamma * std::max(max_component(glm::abs(p)), scene_scale);
+  return glm::max(error, Vec3(std::min(gap, kMaxClearanceFactor * test_error)));
+}
 
 /// The error of a float point rounded once from a double computation on inputs whose
 /// magnitudes sum to `inputs` per component: half an ulp of the result plus the double's error.
@@ -67,8 +84,12 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
   si.position = Vec3(d0 + double(hit.u) * (DVec3(p1) - d0) + double(hit.v) * (DVec3(p2) - d0));
   const Vec3 reach = glm::max(glm::abs(p0 - si.position),
                               glm::max(glm::abs(p1 - si.position), glm::abs(p2 - si.position)));
-  si.position_error = rebuilt_point_error(si.position, glm::abs(p0) + glm::abs(p1) + glm::abs(p2)) +
-                      Vec3(kTriangleTestGamma * max_component(reach));
+  const float test_error = kTriangleTestGamma * max_component(reach);
+  si.position_error = with_box_clearance(
+      si.position,
+      rebuilt_point_error(si.position, glm::abs(p0) + glm::abs(p1) + glm::abs(p2)) +
+          Vec3(test_error),
+      test_error, geometry.coordinate_scale);
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float ng_length = glm::length(ng);
   ng = ng_length > 0.0f ? ng / ng_length : -glm::normalize(ray.direction);

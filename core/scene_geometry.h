@@ -51,8 +51,12 @@ struct SceneGeometry {
   /// Throws Error(kInput) naming the mesh if an invariant above is broken or a coordinate is
   /// not finite.
   void validate() const;
-  /// finalize() on every mesh.
+  /// finalize() on every mesh, and sets coordinate_scale.
   void finalize();
+
+  /// The largest coordinate magnitude of bounds(), as of the last finalize() (0 before):
+  /// the scale of the wide BVH's box padding (kBoxPaddingUlps), for Scene::surface_at().
+  float coordinate_scale = 0.0f;
 };
 
 }  // namespace prism

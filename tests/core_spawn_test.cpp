@@ -185,6 +185,34 @@ TEST(CoreSpawn, RebuiltPointsLieWithinTheirErrorBound) {
   }
 }
 
+// The wide BVH pads every box by kBoxPaddingUlps of the larger of |origin| and the scene's
+// largest coordinate. A ray leaving a large flat triangle (a Cornell wall) must start beyond that
+// padding, or the BVH tests the triangle's flat leaf again for a hit the offset already rules out
+// (Scene::surface_at() widens the point's error bound toward it). A small triangle keeps its
+// bound: the widening stops at a few times the triangle test's own error.
+TEST(CoreSpawn, RaysLeavingLargeFlatTrianglesStartBeyondTheBoxPadding) {
+  Scene scene = one_triangle_scene({-1, -1, 0}, {1, -1, 0}, {-1, 1, 0});
+  TriangleMesh small;
+  small.positions = {{0.2f, 0.2f, 0.5f}, {0.201f, 0.2f, 0.5f}, {0.2f, 0.201f, 0.5f}};
+  small.triangles = {{0, 1, 2}};
+  scene.geometry.meshes.push_back(small);
+  scene.geometry.finalize();
+  ASSERT_FLOAT_EQ(scene.geometry.coordinate_scale, 1.0f);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int i = 0; i < 1000; ++i) {
+    const float u = unit(rng), v = unit(rng) * (1.0f - u);
+    const Vec3 away(unit(rng) - 0.5f, unit(rng) - 0.5f, 1.0f);
+    const SurfaceInteraction wall = scene.surface_at(Ray{}, Hit{1.0f, u, v, 0, 0});
+    const Ray up = spawn_ray(wall, away);
+    const float padding =
+        kBoxPaddingUlps / (1 << 24) * std::max(max_component(glm::abs(up.origin)), 1.0f);
+    EXPECT_GT(up.origin.z, padding) << "u " << u << " v " << v;
+    const SurfaceInteraction tiny = scene.surface_at(Ray{}, Hit{1.0f, u, v, 1, 0});
+    EXPECT_LT(spawn_ray(tiny, away).origin.z - 0.5f, 0.5f * padding) << "u " << u << " v " << v;
+  }
+}
+
 TEST(CoreSpawn, ShadowRaysEndShortOfTheirTargetByTheCoordinatesPrecision) {
   const Scene scene = one_triangle_scene({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   SurfaceInteraction si = scene.surface_at(Ray{}, Hit{1.0f, 0.25f, 0.25f, 0, 0});

@@ -16,9 +16,9 @@ PRISM_KERNEL_INLINE int lowest_lane(uint32_t mask) { return __builtin_ctz(mask);
 
 // Box padding in units of the larger of |origin| and the scene's extent. The watertight test
 // works on vertices translated to the ray origin, so its rounding moves a hit by a few ulps of
-// that magnitude; the slab test's own rounding is of the same order. 32 ulps covers both with
-// room to spare and costs nothing measurable.
-inline constexpr float kPaddingUlps = 32.0f / (1 << 24);
+// that magnitude; the slab test's own rounding is of the same order. 32 ulps (kBoxPaddingUlps,
+// core/ray.h) covers both with room to spare.
+inline constexpr float kPaddingUlps = kBoxPaddingUlps / (1 << 24);
 // Direction components below this count as this (with their sign), so that 1 / d is finite
 // and plane * (1 / d) has no 0 * inf.
 inline constexpr float kMinDirection = 1e-18f;
