@@ -122,11 +122,11 @@ class ObjectSplitBuilder {
     bool partitioned = false;
     if (settings_.split == SplitMethod::kSah && depth < kBalancedDepth) {
       const float area = info.geom.half_area();
-      const sah::BinMapping map(info.cent,
-                                sah::bins_for(n, settings_.bins, area / root_half_area_));
+      const float area_fraction = area / root_half_area_;
+      const sah::BinMapping map(info.cent, sah::bins_for(n, settings_.bins, area_fraction));
       const sah::ObjectSplit best = best_split(begin, end, map);
       const float leaf_cost = settings_.leaf_cost * static_cast<float>(leaf_blocks(n));
-      if (n <= max_leaf && sah::may_be_leaf(n, area / root_half_area_)) {
+      if (n <= max_leaf && sah::may_be_leaf(n, area_fraction)) {
         const float split_cost =
             best.valid() && area > 0.0f
                 ? settings_.traversal_cost + settings_.leaf_cost * best.cost / area

@@ -317,8 +317,9 @@ class SpatialSplitBuilder {
     std::vector<PrimRef> left, right;
     bool done = false;
     if (depth < kBalancedDepth) {
-      const sah::BinMapping map(
-          info.cent, sah::bins_for(n, settings_.bins, info.geom.half_area() / root_half_area_));
+      const float area = info.geom.half_area();
+      const float area_fraction = area / root_half_area_;
+      const sah::BinMapping map(info.cent, sah::bins_for(n, settings_.bins, area_fraction));
       sah::ObjectBins obins(map.bins);
       obins.add(refs.data(), n, map);
       const sah::ObjectSplit object = obins.best(map);
@@ -347,8 +348,7 @@ class SpatialSplitBuilder {
         }
       }
 
-      const float area = info.geom.half_area();
-      if (n <= max_leaf && sah::may_be_leaf(n, area / root_half_area_)) {
+      if (n <= max_leaf && sah::may_be_leaf(n, area_fraction)) {
         const float leaf_cost = settings_.leaf_cost * static_cast<float>(leaf_blocks(n));
         const float split_cost =
             best_cost < kInfinity && area > 0.0f
