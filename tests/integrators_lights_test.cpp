@@ -72,27 +72,56 @@ TriangleMesh tilted_quad() {
   return mesh;
 }
 
+/// The tilted quad's far corner moved along its long edge: a parallelogram, not a rectangle.
+TriangleMesh tilted_parallelogram() {
+  TriangleMesh mesh = tilted_quad();
+  mesh.positions[2] += Vec3(0.3f, 0.0f, 0.09f);
+  mesh.positions[3] += Vec3(0.3f, 0.0f, 0.09f);
+  mesh.finalize();
+  return mesh;
+}
+
+TEST(IntegratorsLights, MeshLightSamplesRectanglesAsOne) {
+  const TriangleMesh quad = tilted_quad();
+  EXPECT_TRUE(MeshLight(quad, Rgb(1.0f), false).is_rectangle());
+  EXPECT_TRUE(MeshLight(quad, Rgb(1.0f), true).is_rectangle());
+  EXPECT_FALSE(MeshLight(tilted_parallelogram(), Rgb(1.0f), false).is_rectangle());
+  // The same rectangle wound the other way, and as the other diagonal's two triangles.
+  TriangleMesh flipped = quad;
+  flipped.triangles = {{0, 1, 2}, {0, 2, 3}};
+  EXPECT_TRUE(MeshLight(flipped, Rgb(1.0f), false).is_rectangle());
+  TriangleMesh other_diagonal = quad;
+  other_diagonal.triangles = {{0, 3, 1}, {1, 3, 2}};
+  EXPECT_TRUE(MeshLight(other_diagonal, Rgb(1.0f), false).is_rectangle());
+  TriangleMesh one = quad;
+  one.triangles.pop_back();
+  EXPECT_FALSE(MeshLight(one, Rgb(1.0f), false).is_rectangle());
+}
+
 TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
-  const TriangleMesh mesh = tilted_quad();
-  const MeshLight light(mesh, Rgb(2.0f), false);
-  // Below the quad (solid angle) and close to it, where its
-  // triangles' solid angles differ most.
-  for (const Vec3& p : {Vec3(0.0f), Vec3(1.5f, -0.5f, 0.5f), Vec3(0.3f, 0.1f, 1.85f)}) {
-    const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
-      const auto s = light.sample_li(p, u);
-      if (!s) return std::nullopt;
-      return s->wi;
-    };
-    const DirectionPdf pdf = [&](const Vec3& w) -> double {
-      const auto si = hit_mesh(mesh, p, w);
-      return si ? light.pdf_li(p, *si) : 0.0;
-    };
-    DirectionalChiSquareOptions options;
-    options.theta_bins = 40;  // the light subtends a small solid angle
-    options.phi_bins = 80;
-    const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
-    EXPECT_EQ(r.impossible_observations, 0u);
-    EXPECT_GT(r.p_value, kSignificance) << r.summary() << " at " << p.x << " " << p.y << " " << p.z;
+  // The rectangle (sampled as one) and a parallelogram (two triangles).
+  for (const TriangleMesh& mesh : {tilted_quad(), tilted_parallelogram()}) {
+    const MeshLight light(mesh, Rgb(2.0f), false);
+    // Below the quad (solid angle) and close to it, where its
+    // triangles' solid angles differ most.
+    for (const Vec3& p : {Vec3(0.0f), Vec3(1.5f, -0.5f, 0.5f), Vec3(0.3f, 0.1f, 1.85f)}) {
+      const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+        const auto s = light.sample_li(p, u);
+        if (!s) return std::nullopt;
+        return s->wi;
+      };
+      const DirectionPdf pdf = [&](const Vec3& w) -> double {
+        const auto si = hit_mesh(mesh, p, w);
+        return si ? light.pdf_li(p, *si) : 0.0;
+      };
+      DirectionalChiSquareOptions options;
+      options.theta_bins = 40;  // the light subtends a small solid angle
+      options.phi_bins = 80;
+      const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
+      EXPECT_EQ(r.impossible_observations, 0u);
+      EXPECT_GT(r.p_value, kSignificance)
+          << r.summary() << " at " << p.x << " " << p.y << " " << p.z;
+    }
   }
 }
 

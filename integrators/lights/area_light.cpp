@@ -128,6 +128,45 @@ MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sid
           {glm::dot(p1 - p0, p1 - p0), glm::dot(p2 - p1, p2 - p1), glm::dot(p0 - p2, p0 - p2)}));
     }
   }
+  if (!texture_) rectangle_ = as_rectangle();
+}
+
+std::optional<Rectangle> MeshLight::as_rectangle() const {
+  if (mesh_.triangles.size() != 2 || !(area_ > 0.0f)) return std::nullopt;
+  if (!(glm::dot(normals_[0], normals_[1]) > 0.99999f)) return std::nullopt;
+  // The diagonal is the edge the triangles share: its ends and the two other corners.
+  const glm::uvec3 t0 = mesh_.triangles[0], t1 = mesh_.triangles[1];
+  const Vec3 a[3] = {mesh_.positions[t0.x], mesh_.positions[t0.y], mesh_.positions[t0.z]};
+  const Vec3 b[3] = {mesh_.positions[t1.x], mesh_.positions[t1.y], mesh_.positions[t1.z]};
+  int shared = 0, corner = -1, opposite = -1;
+  for (int i = 0; i < 3; ++i) {
+    const bool in_b = a[i] == b[0] || a[i] == b[1] || a[i] == b[2];
+    shared += in_b ? 1 : 0;
+    if (!in_b) corner = i;
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (!(b[j] == a[0] || b[j] == a[1] || b[j] == a[2])) opposite = j;
+  }
+  if (shared != 2 || corner < 0 || opposite < 0) return std::nullopt;
+  const Vec3& c = a[corner];
+  const Vec3& e1 = a[(corner + 1) % 3];
+  const Vec3& e2 = a[(corner + 2) % 3];
+  const std::optional<Rectangle> r = rectangle_from_corner(c, e1, e2);
+  if (!r) return std::nullopt;
+  // The fourth corner completes the rectangle, to the same tolerance.
+  const Vec3 diagonal = e1 + e2 - c - b[opposite];
+  if (!(glm::length(diagonal) <= 1e-5f * glm::length(e1 - e2))) return std::nullopt;
+  return r;
+}
+
+bool MeshLight::rectangle_in_solid_angle(const Vec3& p, float side,
+                                         std::optional<SphericalRectangle>& spherical) const {
+  const Rectangle& r = *rectangle_;
+  const float diagonal2 = r.length_x * r.length_x + r.length_y * r.length_y;
+  if (!(diagonal2 > side * side)) return false;
+  spherical.emplace(r, p);
+  const float omega = spherical->solid_angle();
+  return omega >= kMinSphericalRectangleSolidAngle && omega <= kMaxSphericalSolidAngle;
 }
 
 float MeshLight::triangle_weights(const Vec3& p, float* weights, bool* spherical) const {
@@ -177,6 +216,22 @@ std::optional<LightLiSample> MeshLight::toward_triangle_point(const Vec3& p, siz
 
 std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
   if (!(area_ > 0.0f) || triangles_.empty()) return std::nullopt;
+  if (rectangle_) {
+    // From the back of a one-sided emitter (or in its plane) the rectangle sends nothing.
+    const float side = -glm::dot(normals_[0], rectangle_->corner - p);
+    if (two_sided_ ? side == 0.0f : !(side > 0.0f)) return std::nullopt;
+    std::optional<SphericalRectangle> spherical;
+    if (rectangle_in_solid_angle(p, side, spherical)) {
+      const std::optional<Vec3> q = spherical->sample(u);
+      if (!q) return std::nullopt;
+      std::optional<LightLiSample> s =
+          toward_point(p, *q, normals_[0], two_sided_, 1.0f / area_, radiance_);
+      if (s) s->pdf = 1.0f / spherical->solid_angle();
+      return s;
+    }
+    return toward_point(p, rectangle_->point_at(u), normals_[0], two_sided_, 1.0f / area_,
+                        radiance_);
+  }
   const size_t n = mesh_.triangles.size();
   if (n <= kSolidAngleTriangles) {
     float omega[kSolidAngleTriangles];
@@ -235,6 +290,12 @@ float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) cons
   // sample_li() never returns points seen from a side that does not emit: their density is 0.
   const float cos_light = emitting_cos(light_hit.geometric_normal, -d / distance, two_sided_);
   if (cos_light <= 0.0f) return 0.0f;
+  if (rectangle_) {
+    const float side = -glm::dot(normals_[0], rectangle_->corner - p);
+    std::optional<SphericalRectangle> spherical;
+    if (rectangle_in_solid_angle(p, side, spherical)) return 1.0f / spherical->solid_angle();
+    return area_to_solid_angle_pdf(1.0f / area_, distance, cos_light);
+  }
   const size_t n = mesh_.triangles.size();
   if (n <= kSolidAngleTriangles) {
     const size_t i = light_hit.prim_id;

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <optional>
+
+#include "core/math.h"
+
+namespace prism {
+
+/// A rectangle in space, by a corner and two orthogonal edges as unit vectors and lengths:
+/// the form an emitter quad is sampled in (MeshLight). `normal` is cross(unit_x, unit_y).
+struct Rectangle {
+  Vec3 corner;
+  Vec3 unit_x, unit_y, normal;
+  float length_x = 0.0f, length_y = 0.0f;
+
+  float area() const { return length_x * length_y; }
+  /// The point at (u.x, u.y) of the rectangle's extent, uniform in area for u in [0,1)^2.
+  Vec3 point_at(Vec2 u) const {
+    return corner + (u.x * length_x) * unit_x + (u.y * length_y) * unit_y;
+  }
+};
+
+/// The rectangle (corner, edges p1 - corner and p2 - corner) when those edges are orthogonal
+/// and neither is degenerate, to a relative tolerance of `tolerance` of the cosine of their
+/// angle; nothing otherwise.
+std::optional<Rectangle> rectangle_from_corner(const Vec3& corner, const Vec3& p1, const Vec3& p2,
+                                               float tolerance = 1e-5f);
+
+/// A rectangle as seen from a reference point: the spherical rectangle it subtends there
+/// (Urena, Fajardo and King, "An Area-Preserving Parametrization for Spherical Rectangles",
+/// EGSR 2013). Directions drawn with sample() are uniform in its solid angle, density
+/// 1 / solid_angle(). Float throughout: accurate for solid angles of about 1e-4 and more (the
+/// solid angle is a sum of four angles less 2 pi); smaller ones are better sampled in area.
+class SphericalRectangle {
+ public:
+  /// `rectangle` seen from `reference` (anywhere off its plane; on it the solid angle is 0).
+  SphericalRectangle(const Rectangle& rectangle, const Vec3& reference);
+
+  /// In [0, 2 pi]; 0 from the rectangle's plane.
+  float solid_angle() const { return solid_angle_; }
+
+  /// The point of the rectangle whose direction from the reference point is uniform in solid
+  /// angle for u in [0,1)^2 (u.x sweeps the rectangle's x edge, u.y its y edge); nothing when
+  /// the solid angle is 0 or rounding defeats the inversion.
+  std::optional<Vec3> sample(Vec2 u) const;
+
+ private:
+  Vec3 reference_, unit_x_, unit_y_, unit_z_;
+  float x0_ = 0.0f, x1_ = 0.0f, y0_ = 0.0f, y1_ = 0.0f;
+  float z0_ = 0.0f;        ///< -|distance to the plane|
+  float z_signed_ = 0.0f;  ///< the reference point's offset to the plane along `normal`
+  float b0_ = 0.0f, b1_ = 0.0f, k_ = 0.0f;
+  float solid_angle_ = 0.0f;
+};
+
+}  // namespace prism
