@@ -85,7 +85,7 @@ ExrImage prepare_exr(const fs::path& path, const Image& image, const ImageMetada
   }
   const int channels = int(names.size());
   const size_t count = size_t(image.width) * image.height;
-  std::vector<float> pixels(count * channels);
+  ImagePixels pixels(count * channels);
   for (size_t i = 0; i < count; ++i) {
     for (int c = 0; c < channels; ++c) {
       pixels[i * channels + c] =

@@ -40,7 +40,7 @@ void write_atomically(const std::filesystem::path& target, const std::string& fo
 /// The header and float pixels of the scene-linear EXR of `image`, as write_exr writes it.
 struct ExrImage {
   OIIO::ImageSpec spec;
-  std::vector<float> pixels;
+  ImagePixels pixels;  ///< huge pages, as the image's own (core/huge_page_allocator.h)
 };
 ExrImage prepare_exr(const std::filesystem::path& path, const Image& image,
                      const ImageMetadata& metadata, const ColorPipeline& pipeline,
