@@ -14,17 +14,10 @@
 namespace prism {
 namespace {
 
-using test::ChiSquareResult;
-using test::directional_chi_square;
-using test::DirectionalChiSquareOptions;
-using test::DirectionPdf;
-using test::DirectionSampler;
-using test::sidak_significance;
+// One chi-square test per reference point of SamplingIsUniformInSolidAngle.
+const double kSignificance = test::sidak_significance(0.01, 5);
 
-constexpr size_t kChiSquareTests = 5;
-const double kSignificance = sidak_significance(0.01, kChiSquareTests);
-
-/// A rectangle of `size` with its x edge along `axis_x` (turned about the normal (0.2, 0.3, 1)).
+/// A rectangle of `size` on the plane of normal (0.2, 0.3, 1), its x edge turned by `turn`.
 Rectangle tilted_rectangle(const Vec3& corner, Vec2 size, float turn) {
   const Vec3 n = glm::normalize(Vec3(0.2f, 0.3f, 1.0f));
   const Vec3 a = glm::normalize(glm::cross(n, Vec3(1.0f, 0.0f, 0.0f)));
@@ -102,18 +95,18 @@ TEST(IntegratorsSphericalRectangle, SamplingIsUniformInSolidAngle) {
     const SphericalRectangle sr(r, p);
     const float omega = sr.solid_angle();
     ASSERT_GT(omega, 0.0f);
-    const DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
+    const test::DirectionSampler sampler = [&](float, Vec2 u) -> std::optional<Vec3> {
       const std::optional<Vec3> q = sr.sample(u);
       if (!q) return std::nullopt;
       return glm::normalize(*q - p);
     };
-    const DirectionPdf pdf = [&](const Vec3& w) -> double {
+    const test::DirectionPdf pdf = [&](const Vec3& w) -> double {
       return hits(r, p, w) ? 1.0 / omega : 0.0;
     };
-    DirectionalChiSquareOptions options;
+    test::DirectionalChiSquareOptions options;
     options.theta_bins = 40;
     options.phi_bins = 80;
-    const ChiSquareResult result = directional_chi_square(sampler, pdf, options);
+    const test::ChiSquareResult result = test::directional_chi_square(sampler, pdf, options);
     EXPECT_EQ(result.impossible_observations, 0u) << omega;
     EXPECT_GT(result.p_value, kSignificance)
         << result.summary() << " at " << p.x << " " << p.y << " " << p.z;
