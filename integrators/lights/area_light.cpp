@@ -155,7 +155,7 @@ std::optional<Rectangle> MeshLight::as_rectangle() const {
   if (!r) return std::nullopt;
   // The fourth corner completes the rectangle, to the same tolerance.
   const Vec3 diagonal = e1 + e2 - c - b[opposite];
-  if (!(glm::length(diagonal) <= 1e-5f * glm::length(e1 - e2))) return std::nullopt;
+  if (!(glm::length(diagonal) <= kRectangleTolerance * glm::length(e1 - e2))) return std::nullopt;
   return r;
 }
 

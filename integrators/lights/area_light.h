@@ -54,9 +54,8 @@ class ParallelogramLight final : public LightSource {
 ///   the same rule with its diagonal as the longest edge: uniformly in its solid angle
 ///   (SphericalRectangle) when the point is close and that solid angle is in
 ///   [kMinSphericalRectangleSolidAngle, kMaxSphericalSolidAngle], uniformly in its area
-///   otherwise. The two
-///   triangles' choice and their two solid angles are left out: about half the work per sample
-///   (docs/PERFORMANCE.md, "2026-12-05").
+///   otherwise. The two triangles' choice and their two solid angles are left out: about half
+///   the work per light sample (docs/PERFORMANCE.md, "2026-12-05").
 /// - larger meshes: a triangle by area and a point uniformly on it.
 class MeshLight final : public LightSource {
  public:

@@ -84,11 +84,6 @@ LightSet::LightSet(const Scene& scene, const LightOptions& options, const Surfac
 
 const LightSource* LightSet::sample(float u, float* pmf) const {
   if (lights_.empty()) return nullptr;
-  // One light (every CS184 scene): the distribution's search would find it with the same pmf.
-  if (lights_.size() == 1) {
-    if (pmf) *pmf = selection_.pmf(0);
-    return lights_[0].get();
-  }
   return lights_[selection_.sample(u, pmf)].get();
 }
 

@@ -19,6 +19,12 @@ DiscreteDistribution::DiscreteDistribution(std::span<const float> weights)
 }
 
 size_t DiscreteDistribution::sample(float u, float* pmf, float* u_remapped) const {
+  // One entry (a scene's only light): what the search below would give, without it.
+  if (pmf_.size() == 1) {
+    if (pmf) *pmf = pmf_[0];
+    if (u_remapped) *u_remapped = float(std::clamp(double(u), 0.0, double(0x1.fffffep-1f)));
+    return 0;
+  }
   // The last entry whose cdf is <= u, skipping zero-probability entries.
   const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), double(u));
   size_t i = size_t(std::max<std::ptrdiff_t>(0, (it - cdf_.begin()) - 1));

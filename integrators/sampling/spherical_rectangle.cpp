@@ -7,12 +7,11 @@
 
 namespace prism {
 
-std::optional<Rectangle> rectangle_from_corner(const Vec3& corner, const Vec3& p1, const Vec3& p2,
-                                               float tolerance) {
+std::optional<Rectangle> rectangle_from_corner(const Vec3& corner, const Vec3& p1, const Vec3& p2) {
   const Vec3 ex = p1 - corner, ey = p2 - corner;
   const float lx = glm::length(ex), ly = glm::length(ey);
   if (!(lx > 0.0f) || !(ly > 0.0f) || !std::isfinite(lx * ly)) return std::nullopt;
-  if (!(std::abs(glm::dot(ex, ey)) <= tolerance * lx * ly)) return std::nullopt;
+  if (!(std::abs(glm::dot(ex, ey)) <= kRectangleTolerance * lx * ly)) return std::nullopt;
   Rectangle r;
   r.corner = corner;
   r.unit_x = ex / lx;
