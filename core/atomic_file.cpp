@@ -7,8 +7,10 @@
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <condition_variable>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <string>
 
 #include "core/error.h"
@@ -47,6 +49,38 @@ void release_slot(int slot) {
   pending_slots[slot].ready.store(false);
   pending_slots[slot].in_use.store(false);
 }
+
+/// Writes in flight (alive AtomicFiles and writability probes), and whether new ones may start.
+/// stop_file_writes() closes it and waits for it to empty: with no write able to create a file
+/// afterwards, the process can end without leaving one, whichever thread is writing.
+struct WriteGate {
+  std::mutex mutex;
+  std::condition_variable emptied;
+  int in_flight = 0;
+  bool closed = false;
+};
+WriteGate write_gate;
+
+/// Counts one more write in flight; blocks for good once the gate is closed (the process is
+/// about to exit).
+void start_write() {
+  std::unique_lock lock(write_gate.mutex);
+  write_gate.emptied.wait(lock, [] { return !write_gate.closed; });
+  ++write_gate.in_flight;
+}
+
+void finish_write() {
+  const std::lock_guard lock(write_gate.mutex);
+  if (--write_gate.in_flight == 0) write_gate.emptied.notify_all();
+}
+
+/// A write in flight for as long as it lives (the writability probe's).
+struct ProbeInFlight {
+  ProbeInFlight() { start_write(); }
+  ~ProbeInFlight() { finish_write(); }
+  ProbeInFlight(const ProbeInFlight&) = delete;
+  ProbeInFlight& operator=(const ProbeInFlight&) = delete;
+};
 
 fs::path folder_of(const fs::path& path) {
   return path.has_parent_path() ? path.parent_path() : fs::path(".");
@@ -87,6 +121,9 @@ Error output_error(const fs::path& path, const std::string& message) {
 }
 
 }  // namespace
+
+AtomicFile::InFlight::InFlight() { start_write(); }
+AtomicFile::InFlight::~InFlight() { finish_write(); }
 
 AtomicFile::AtomicFile(const fs::path& target)
     : target_(target), temp_(temp_path_for(target)), slot_(claim_slot(temp_)) {
@@ -135,6 +172,7 @@ void check_output_writable(const fs::path& path) {
   if (fs::is_directory(path, ec)) throw output_error(path, "the output path is a folder");
   // Creating a file is the only reliable test (permissions, read-only mounts, ACLs, quotas).
   const fs::path probe = temp_path_for(path);
+  const ProbeInFlight probing;
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0) {
     throw output_error(path, "cannot create files in the output folder '" + folder.string() +
@@ -145,6 +183,12 @@ void check_output_writable(const fs::path& path) {
   // A run that ends without writing `path` (a resumed render that finishes before its next
   // checkpoint) must not leave the temporary files of runs killed while writing it.
   remove_stale_temp_files(path);
+}
+
+bool stop_file_writes(std::chrono::milliseconds timeout) {
+  std::unique_lock lock(write_gate.mutex);
+  write_gate.closed = true;
+  return write_gate.emptied.wait_for(lock, timeout, [] { return write_gate.in_flight == 0; });
 }
 
 void remove_pending_temp_files() noexcept {

@@ -1,8 +1,13 @@
 #include "core/app/interrupts.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
 #include <csignal>
+#include <cstdio>
+#include <thread>
 
 #include "core/atomic_file.h"
 
@@ -12,18 +17,50 @@ namespace {
 std::atomic<int> received_signal{0};
 struct sigaction previous_int, previous_term;
 
+/// The handler's only job: pass the signal to the thread that acts on it, through a pipe (write()
+/// is async-signal-safe; whatever the interrupted thread held stays untouched).
+int signal_pipe[2] = {-1, -1};
+constexpr unsigned char kQuit = 0;  // not a signal number: asks the acting thread to end
+
+/// How long a second signal waits for files being written to be finished or removed. Writes are
+/// one image each (milliseconds); the limit only matters for a stalled disk.
+constexpr std::chrono::milliseconds kWritesInFlightTimeout{2000};
+
 void on_signal(int signal) {
-  int expected = 0;
-  if (received_signal.compare_exchange_strong(expected, signal)) return;
-  // The second signal: stop now, leaving nothing half-written (only async-signal-safe calls).
-  remove_pending_temp_files();
-  _exit(interrupted_exit_code(signal));
+  const int saved_errno = errno;
+  const unsigned char byte = static_cast<unsigned char>(signal);
+  [[maybe_unused]] const ssize_t written = ::write(signal_pipe[1], &byte, 1);
+  errno = saved_errno;
 }
+
+/// Runs on its own thread, which holds no lock when a signal comes: the first signal is stored for
+/// the render to see; the second lets the files being written finish (or removes them after
+/// kWritesInFlightTimeout), keeps any other write from starting, and ends the process.
+void act_on_signals() {
+  for (;;) {
+    unsigned char byte = kQuit;
+    const ssize_t got = ::read(signal_pipe[0], &byte, 1);
+    if (got < 0 && errno == EINTR) continue;
+    if (got != 1 || byte == kQuit) return;
+    const int signal = byte;
+    int expected = 0;
+    if (received_signal.compare_exchange_strong(expected, signal)) continue;
+    if (!stop_file_writes(kWritesInFlightTimeout)) remove_pending_temp_files();
+    _exit(interrupted_exit_code(signal));
+  }
+}
+
+std::thread signal_thread;
 
 }  // namespace
 
 InterruptHandlers::InterruptHandlers() {
   received_signal.store(0);
+  if (::pipe2(signal_pipe, O_CLOEXEC) != 0) {
+    std::perror("prism: cannot set up the SIGINT/SIGTERM handling (pipe)");
+    return;  // the signals keep their default effect: ending the process
+  }
+  signal_thread = std::thread(act_on_signals);
   struct sigaction action {};
   action.sa_handler = &on_signal;
   sigemptyset(&action.sa_mask);
@@ -33,8 +70,15 @@ InterruptHandlers::InterruptHandlers() {
 }
 
 InterruptHandlers::~InterruptHandlers() {
+  if (!signal_thread.joinable()) return;
   sigaction(SIGINT, &previous_int, nullptr);
   sigaction(SIGTERM, &previous_term, nullptr);
+  // A signal that came before the handlers went back is still in the pipe, ahead of kQuit.
+  [[maybe_unused]] const ssize_t written = ::write(signal_pipe[1], &kQuit, 1);
+  signal_thread.join();
+  ::close(signal_pipe[0]);
+  ::close(signal_pipe[1]);
+  signal_pipe[0] = signal_pipe[1] = -1;
 }
 
 const std::atomic<int>& InterruptHandlers::stop_signal() const { return received_signal; }

@@ -6,9 +6,12 @@ namespace prism {
 
 /// SIGINT and SIGTERM during a render, while alive: the first signal stores its number in
 /// stop_signal(), so the render stops after the tiles in flight and writes what it has (and its
-/// checkpoint); a second signal deletes the temporary files being written
-/// (remove_pending_temp_files()) and ends the process at once with interrupted_exit_code(), so
-/// no partial file is left. The previous handlers come back when it is destroyed.
+/// checkpoint); a second signal ends the process with interrupted_exit_code() as soon as the files
+/// being written are finished (stop_file_writes(); a write is one image, milliseconds), starting
+/// no other, so no partial or temporary file is left. The signals are acted on by a thread of its
+/// own, which the handler wakes through a pipe: a signal landing on a thread that is writing or
+/// holds a lock changes nothing there. The previous handlers come back when it is destroyed. One
+/// alive at a time.
 class InterruptHandlers {
  public:
   InterruptHandlers();
