@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/atomic_file.h"
+#include "core/error.h"
 
 namespace prism {
 namespace {
@@ -55,6 +56,7 @@ std::thread signal_thread;
 }  // namespace
 
 InterruptHandlers::InterruptHandlers() {
+  PRISM_CHECK(!signal_thread.joinable());  // one alive at a time
   received_signal.store(0);
   if (::pipe2(signal_pipe, O_CLOEXEC) != 0) {
     std::perror("prism: cannot set up the SIGINT/SIGTERM handling (pipe)");
