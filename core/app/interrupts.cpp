@@ -1,6 +1,7 @@
 #include "core/app/interrupts.h"
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -62,7 +63,16 @@ InterruptHandlers::InterruptHandlers() {
     std::perror("prism: cannot set up the SIGINT/SIGTERM handling (pipe)");
     return;  // the signals keep their default effect: ending the process
   }
+  // The acting thread never receives SIGINT or SIGTERM itself (it starts with them blocked):
+  // a handler that interrupts it while it waits for the pipe would wait for itself where the
+  // handler is deferred to the next safe point, as ThreadSanitizer's are.
+  sigset_t interrupt_signals, previous_mask;
+  sigemptyset(&interrupt_signals);
+  sigaddset(&interrupt_signals, SIGINT);
+  sigaddset(&interrupt_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &interrupt_signals, &previous_mask);
   signal_thread = std::thread(act_on_signals);
+  pthread_sigmask(SIG_SETMASK, &previous_mask, nullptr);
   struct sigaction action {};
   action.sa_handler = &on_signal;
   sigemptyset(&action.sa_mask);
