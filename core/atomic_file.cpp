@@ -4,7 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <array>
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <condition_variable>
@@ -12,6 +12,7 @@
 #include <cstring>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -19,67 +20,43 @@ namespace prism {
 namespace fs = std::filesystem;
 namespace {
 
-/// Temporary paths a signal handler may have to delete: fixed storage, no allocation, slots
-/// claimed and released atomically.
-constexpr int kSlots = 32;
-constexpr size_t kPathBytes = 4096;
-struct PendingSlot {
-  std::atomic<bool> in_use{false};
-  std::atomic<bool> ready{false};
-  char path[kPathBytes];
-};
-std::array<PendingSlot, kSlots> pending_slots;
-
-int claim_slot(const fs::path& path) {
-  const std::string text = path.string();
-  if (text.size() >= kPathBytes) return -1;
-  for (int i = 0; i < kSlots; ++i) {
-    bool expected = false;
-    if (pending_slots[i].in_use.compare_exchange_strong(expected, true)) {
-      std::memcpy(pending_slots[i].path, text.c_str(), text.size() + 1);
-      pending_slots[i].ready.store(true);
-      return i;
-    }
-  }
-  return -1;  // more than kSlots files at once: that one is not cleaned up by a signal
-}
-
-void release_slot(int slot) {
-  if (slot < 0) return;
-  pending_slots[slot].ready.store(false);
-  pending_slots[slot].in_use.store(false);
-}
-
-/// Writes in flight (alive AtomicFiles and writability probes), and whether new ones may start.
-/// stop_file_writes() closes it and waits for it to empty: with no write able to create a file
-/// afterwards, the process can end without leaving one, whichever thread is writing.
+/// Writes in flight (alive AtomicFiles and writability probes, by temporary path), and whether
+/// new ones may start. stop_file_writes() closes it and waits for it to empty: with no write able
+/// to create a file afterwards, the process can end without leaving one, whichever thread is
+/// writing.
 struct WriteGate {
   std::mutex mutex;
   std::condition_variable emptied;
-  int in_flight = 0;
+  std::vector<fs::path> in_flight;
   bool closed = false;
 };
 WriteGate write_gate;
 
-/// Counts one more write in flight; blocks for good once the gate is closed (the process is
+/// Counts a write of `temp` in flight; blocks for good once the gate is closed (the process is
 /// about to exit).
-void start_write() {
+void start_write(const fs::path& temp) {
   std::unique_lock lock(write_gate.mutex);
   write_gate.emptied.wait(lock, [] { return !write_gate.closed; });
-  ++write_gate.in_flight;
+  write_gate.in_flight.push_back(temp);
 }
 
-void finish_write() {
+void finish_write(const fs::path& temp) {
   const std::lock_guard lock(write_gate.mutex);
-  if (--write_gate.in_flight == 0) write_gate.emptied.notify_all();
+  auto& paths = write_gate.in_flight;
+  paths.erase(std::find(paths.begin(), paths.end(), temp));
+  if (paths.empty()) write_gate.emptied.notify_all();
 }
 
-/// A write in flight for as long as it lives (the writability probe's).
-struct ProbeInFlight {
-  ProbeInFlight() { start_write(); }
-  ~ProbeInFlight() { finish_write(); }
+/// A write of `temp` in flight for as long as it lives (the writability probe's).
+class ProbeInFlight {
+ public:
+  explicit ProbeInFlight(const fs::path& temp) : temp_(temp) { start_write(temp_); }
+  ~ProbeInFlight() { finish_write(temp_); }
   ProbeInFlight(const ProbeInFlight&) = delete;
   ProbeInFlight& operator=(const ProbeInFlight&) = delete;
+
+ private:
+  fs::path temp_;
 };
 
 fs::path folder_of(const fs::path& path) {
@@ -122,11 +99,8 @@ Error output_error(const fs::path& path, const std::string& message) {
 
 }  // namespace
 
-AtomicFile::InFlight::InFlight() { start_write(); }
-AtomicFile::InFlight::~InFlight() { finish_write(); }
-
-AtomicFile::AtomicFile(const fs::path& target)
-    : target_(target), temp_(temp_path_for(target)), slot_(claim_slot(temp_)) {
+AtomicFile::AtomicFile(const fs::path& target) : target_(target), temp_(temp_path_for(target)) {
+  start_write(temp_);
   remove_stale_temp_files(target);
 }
 
@@ -135,7 +109,7 @@ AtomicFile::~AtomicFile() {
     std::error_code ec;
     fs::remove(temp_, ec);
   }
-  release_slot(slot_);
+  finish_write(temp_);
 }
 
 void AtomicFile::commit() {
@@ -150,8 +124,6 @@ void AtomicFile::commit() {
   fs::rename(temp_, target_, ec);
   if (ec) throw output_error(target_, "cannot replace the file: " + ec.message());
   committed_ = true;
-  release_slot(slot_);
-  slot_ = -1;
   // Make the rename itself durable; a failure here loses nothing already written.
   if (const int dir = ::open(folder_of(target_).c_str(), O_RDONLY | O_DIRECTORY); dir >= 0) {
     ::fsync(dir);
@@ -172,7 +144,7 @@ void check_output_writable(const fs::path& path) {
   if (fs::is_directory(path, ec)) throw output_error(path, "the output path is a folder");
   // Creating a file is the only reliable test (permissions, read-only mounts, ACLs, quotas).
   const fs::path probe = temp_path_for(path);
-  const ProbeInFlight probing;
+  const ProbeInFlight probing(probe);
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0) {
     throw output_error(path, "cannot create files in the output folder '" + folder.string() +
@@ -188,13 +160,11 @@ void check_output_writable(const fs::path& path) {
 bool stop_file_writes(std::chrono::milliseconds timeout) {
   std::unique_lock lock(write_gate.mutex);
   write_gate.closed = true;
-  return write_gate.emptied.wait_for(lock, timeout, [] { return write_gate.in_flight == 0; });
-}
-
-void remove_pending_temp_files() noexcept {
-  for (PendingSlot& slot : pending_slots) {
-    if (slot.ready.load()) ::unlink(slot.path);
+  if (write_gate.emptied.wait_for(lock, timeout, [] { return write_gate.in_flight.empty(); })) {
+    return true;
   }
+  for (const fs::path& temp : write_gate.in_flight) ::unlink(temp.c_str());
+  return false;
 }
 
 }  // namespace prism

@@ -9,9 +9,8 @@ namespace prism {
 /// hidden file beside the target, unique per process and object), then commit(): fsync, rename
 /// over the target, fsync of the folder. Destroyed without a commit, it removes the temporary
 /// file, so a failure leaves the previous target (or none) and never a partial file. While it
-/// exists its temporary path is registered for remove_pending_temp_files() and it counts as a write
-/// in flight for stop_file_writes(). Creating one also removes the temporary files of the same
-/// target that dead processes left (SIGKILL). Created and destroyed on the same thread.
+/// exists it counts as a write in flight for stop_file_writes(). Creating one also removes the
+/// temporary files of the same target that dead processes left (SIGKILL).
 class AtomicFile {
  public:
   explicit AtomicFile(const std::filesystem::path& target);
@@ -25,18 +24,8 @@ class AtomicFile {
   void commit();
 
  private:
-  /// Counts the file as a write in flight for stop_file_writes() while it lives (the first member:
-  /// counted before anything else, and until the temporary file is gone).
-  struct InFlight {
-    InFlight();
-    ~InFlight();
-    InFlight(const InFlight&) = delete;
-    InFlight& operator=(const InFlight&) = delete;
-  };
-  InFlight in_flight_;
   std::filesystem::path target_;
   std::filesystem::path temp_;
-  int slot_ = -1;
   bool committed_ = false;
 };
 
@@ -47,16 +36,12 @@ class AtomicFile {
 /// the temporary files of `path` that dead processes left, as creating an AtomicFile does.
 void check_output_writable(const std::filesystem::path& path);
 
-/// Deletes the temporary file of every AtomicFile alive, with unlink() only: safe in a signal
-/// handler, for a process that must stop at once without leaving partial files.
-void remove_pending_temp_files() noexcept;
-
-/// For a process about to end with _exit() without leaving partial files, called from an ordinary
-/// thread (not a signal handler): from now on no new write starts (creating an AtomicFile, or the
-/// probe of check_output_writable(), blocks its thread for good), and the writes in flight are
-/// given up to `timeout` to commit or remove their temporary files. Returns true when none is left
-/// in flight. After a false return, remove_pending_temp_files() deletes the laggards' temporary
-/// files (a writer that opens its file again after that would recreate it).
+/// For a process about to end with _exit() without leaving partial files (not from a signal
+/// handler): from now on no new write starts (creating an AtomicFile, or the probe of
+/// check_output_writable(), blocks its thread for good), and the writes in flight are given up to
+/// `timeout` to commit or remove their temporary files. Returns true when none is left in flight;
+/// otherwise deletes the laggards' temporary files and returns false (a laggard that opens its
+/// file again after that would recreate it).
 bool stop_file_writes(std::chrono::milliseconds timeout);
 
 }  // namespace prism

@@ -11,11 +11,11 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "tests/support/child_process.h"
 #include "tests/support/test_support.h"
 
 namespace prism {
@@ -25,21 +25,9 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
 
-std::vector<std::string> temp_files_in(const fs::path& folder) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    const std::string name = entry.path().filename().string();
-    if (name.find(".prism-tmp-") != std::string::npos) names.push_back(name);
-  }
-  return names;
-}
-
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
+using test::read_bytes;
+using test::temp_files_in;
+using test::write_text;
 
 /// Ends the child process of a death test: 0 when `ok`, else 1 after saying why on stderr.
 [[noreturn]] void finish_child(bool ok, const std::string& why) {
@@ -60,16 +48,16 @@ TEST(CoreAtomicFile, CommitReplacesTheTargetAndLeavesNoTemporaryFile) {
     AtomicFile file(target);
     EXPECT_EQ(file.temp_path().parent_path(), dir);
     write_text(file.temp_path(), "new");
-    EXPECT_EQ(read_text(target), "old");  // untouched until the commit
+    EXPECT_EQ(read_bytes(target), "old");  // untouched until the commit
     file.commit();
   }
-  EXPECT_EQ(read_text(target), "new");
+  EXPECT_EQ(read_bytes(target), "new");
   EXPECT_EQ(temp_files_in(dir), std::vector<std::string>{});
   {
     AtomicFile abandoned(target);
     write_text(abandoned.temp_path(), "partial");
   }
-  EXPECT_EQ(read_text(target), "new");
+  EXPECT_EQ(read_bytes(target), "new");
   EXPECT_EQ(temp_files_in(dir), std::vector<std::string>{});
   fs::remove_all(dir);
 }
@@ -103,7 +91,7 @@ TEST(CoreAtomicFileDeathTest, StoppingWritesWaitsForTheWriteInFlightAndStartsNoO
     writer.join();
     if (!drained) finish_child(false, "stop_file_writes gave up on a write that commits");
     if (waited < milliseconds(200)) finish_child(false, "stop_file_writes did not wait");
-    if (read_text(target) != "whole") finish_child(false, "the write in flight was not committed");
+    if (read_bytes(target) != "whole") finish_child(false, "the write in flight was not committed");
     if (late_started) finish_child(false, "a write started after stop_file_writes");
     if (!temp_files_in(dir).empty()) finish_child(false, "a temporary file was left");
     finish_child(!fs::exists(late_target), "the late write created its target");
@@ -112,7 +100,7 @@ TEST(CoreAtomicFileDeathTest, StoppingWritesWaitsForTheWriteInFlightAndStartsNoO
   fs::remove_all(dir);
 }
 
-TEST(CoreAtomicFileDeathTest, StoppingWritesGivesUpOnAStalledWriteWhoseFileCanThenBeRemoved) {
+TEST(CoreAtomicFileDeathTest, StoppingWritesGivesUpOnAStalledWriteAndRemovesItsFile) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   const fs::path dir = test::make_temp_dir("atomic_file_stalled");
   const auto scenario = [&] {
@@ -125,6 +113,7 @@ TEST(CoreAtomicFileDeathTest, StoppingWritesGivesUpOnAStalledWriteWhoseFileCanTh
     });
     stalled.detach();
     wait_until(created);
+    if (temp_files_in(dir).size() != 1) finish_child(false, "the stalled write's file is missing");
     const auto start = Clock::now();
     const bool drained = stop_file_writes(milliseconds(100));
     const auto waited = Clock::now() - start;
@@ -132,9 +121,7 @@ TEST(CoreAtomicFileDeathTest, StoppingWritesGivesUpOnAStalledWriteWhoseFileCanTh
     if (waited < milliseconds(100) || waited > milliseconds(5000)) {
       finish_child(false, "stop_file_writes did not wait for its timeout, and only that");
     }
-    if (temp_files_in(dir).size() != 1) finish_child(false, "the stalled write's file is missing");
-    remove_pending_temp_files();
-    finish_child(temp_files_in(dir).empty(), "remove_pending_temp_files left the stalled file");
+    finish_child(temp_files_in(dir).empty(), "stop_file_writes left the stalled write's file");
   };
   EXPECT_EXIT(scenario(), ::testing::ExitedWithCode(0), "");
   fs::remove_all(dir);

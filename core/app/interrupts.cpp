@@ -47,7 +47,7 @@ void act_on_signals() {
     const int signal = byte;
     int expected = 0;
     if (received_signal.compare_exchange_strong(expected, signal)) continue;
-    if (!stop_file_writes(kWritesInFlightTimeout)) remove_pending_temp_files();
+    stop_file_writes(kWritesInFlightTimeout);
     _exit(interrupted_exit_code(signal));
   }
 }

@@ -27,7 +27,7 @@ class InterruptHandlers {
 /// SIGTERM), as shells report a process killed by it.
 inline int interrupted_exit_code(int signal) { return 128 + signal; }
 
-/// "SIGINT", "SIGTERM", or "signal N".
+/// "SIGINT", "SIGTERM", or "a signal".
 const char* signal_name(int signal);
 
 }  // namespace prism
