@@ -100,8 +100,9 @@ Error output_error(const fs::path& path, const std::string& message) {
 }  // namespace
 
 AtomicFile::AtomicFile(const fs::path& target) : target_(target), temp_(temp_path_for(target)) {
-  start_write(temp_);
   remove_stale_temp_files(target);
+  // Counted last: nothing after it can throw, so the destructor always uncounts it.
+  start_write(temp_);
 }
 
 AtomicFile::~AtomicFile() {
