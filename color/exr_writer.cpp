@@ -15,13 +15,6 @@ namespace {
 
 constexpr float kHalfMax = 65504.0f;
 
-bool is_valid_pixel_type(const std::string& type) { return type == "half" || type == "float"; }
-
-bool is_valid_compression(const std::string& compression) {
-  return compression == "zip" || compression == "piz" || compression == "dwaa" ||
-         compression == "none";
-}
-
 std::string layer_of(const std::string& channel) {
   const auto dot = channel.rfind('.');
   return dot == std::string::npos ? channel : channel.substr(0, dot);
@@ -38,17 +31,6 @@ bool needs_float(const std::string& channel) {
 
 }  // namespace
 
-void validate_exr_options(const ExrOptions& options) {
-  if (!is_valid_pixel_type(options.pixel_type)) {
-    throw Error(ErrorKind::kUsage,
-                "unknown EXR pixel type '" + options.pixel_type + "'; available: half, float");
-  }
-  if (!is_valid_compression(options.compression)) {
-    throw Error(ErrorKind::kUsage, "unknown EXR compression '" + options.compression +
-                                       "'; available: zip, piz, dwaa, none");
-  }
-}
-
 void write_exr(const fs::path& path, const Image& image, const ImageMetadata& metadata,
                const ColorPipeline& pipeline, const ExrOptions& options) {
   validate_exr_options(options);
@@ -61,7 +43,7 @@ namespace color_detail {
 
 ExrImage prepare_exr(const fs::path& path, const Image& image, const ImageMetadata& metadata,
                      const ColorPipeline& pipeline, const ExrOptions& options) {
-  PRISM_CHECK(is_valid_pixel_type(options.pixel_type) && is_valid_compression(options.compression));
+  PRISM_CHECK(exr_options_are_valid(options));
   PRISM_CHECK(image.width > 0 && image.height > 0);
   PRISM_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels());
 

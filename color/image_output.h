@@ -26,6 +26,8 @@ struct ExrOptions {
 /// Throws Error(kUsage) naming the bad value unless pixel_type is half|float and compression is
 /// zip|piz|dwaa|none. write_exr and validate_outputs (output_plan.h) call it.
 void validate_exr_options(const ExrOptions& options);
+/// Whether validate_exr_options() accepts `options`.
+bool exr_options_are_valid(const ExrOptions& options);
 
 /// Provenance recorded in the file header, as (name, value) pairs ("prism:version", ...).
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;

@@ -21,19 +21,6 @@
 
 namespace prism {
 
-std::string ImageFileContents::attribute(const std::string& name) const {
-  for (const auto& [key, value] : attributes) {
-    if (key == name) return value;
-  }
-  return {};
-}
-
-int ImageFileContents::channel(const std::string& name) const {
-  const auto& names = image.channel_names;
-  const auto it = std::find(names.begin(), names.end(), name);
-  return it == names.end() ? -1 : int(it - names.begin());
-}
-
 namespace {
 /// The largest side of an EXR prism reads: far above any film (kMaxFilmSide) or environment map.
 constexpr int64_t kMaxExrSide = int64_t(1) << 20;

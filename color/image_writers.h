@@ -2,7 +2,8 @@
 
 // What the image writers of color/ share (internal to color/): the atomic write, the checks and
 // the header attributes every file carries, and the writers that output plans call once the
-// plan is validated. Other code uses image_output.h and output_plan.h.
+// plan is validated (declared in image_file_writers.h). Other code uses image_output.h and
+// output_plan.h.
 
 #include <OpenImageIO/imageio.h>
 
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "color/color_pipeline.h"
+#include "color/image_file_writers.h"
 #include "color/image_output.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -54,17 +56,5 @@ void check_finite(std::span<const float> values, const std::filesystem::path& pa
 /// (prism:ocioConfig, ...) to the header.
 void add_header_attributes(OIIO::ImageSpec& spec, const ImageMetadata& metadata,
                            const ColorPipeline& pipeline);
-
-/// write_exr without its checks: `options` is valid and the path was checked writable (an
-/// output plan validated both).
-void write_exr_file(const std::filesystem::path& path, const Image& image,
-                    const ImageMetadata& metadata, const ColorPipeline& pipeline,
-                    const ExrOptions& options);
-
-/// write_display_image without its checks: `format` ("png", "jpeg" or "tiff") comes from the
-/// output plan, whose validation checked the path writable.
-void write_display_file(const std::filesystem::path& path, const std::string& format,
-                        const Image& image, const ImageMetadata& metadata,
-                        const ColorPipeline& pipeline);
 
 }  // namespace prism::color_detail

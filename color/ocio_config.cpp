@@ -1,6 +1,7 @@
 #include "color/ocio_config.h"
 
-#include <OpenImageIO/hash.h>
+#include <fmt/format.h>
+#include <openssl/evp.h>
 
 #include <algorithm>
 #include <cctype>
@@ -18,8 +19,17 @@ namespace prism::color_detail {
 namespace {
 
 // Lower-case hex, as sha1sum prints it, so the header value can be checked against the file.
+// OpenSSL's digest (libcrypto, a few milliseconds to load), not OpenImageIO's: the program loads
+// OpenImageIO only when it reads or writes an image (color/image_io.h), after the config.
 std::string sha1_of(const std::string& bytes) {
-  return "sha1:" + to_lower(OIIO::SHA1::digest(bytes.data(), bytes.size()));
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  if (EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha1(), nullptr) != 1) {
+    throw Error(ErrorKind::kInternal, "OpenSSL could not compute the SHA-1 of the OCIO config");
+  }
+  std::string hex = "sha1:";
+  for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
+  return hex;
 }
 
 std::string read_config_file(const std::string& path, const std::string& origin) {

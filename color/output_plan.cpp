@@ -3,7 +3,7 @@
 #include <optional>
 #include <system_error>
 
-#include "color/image_writers.h"
+#include "color/image_file_writers.h"
 #include "color/sample_rate_image.h"
 #include "core/error.h"
 #include "core/strings.h"

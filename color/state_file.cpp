@@ -34,13 +34,6 @@ Error bad_file(const fs::path& path, const std::string& message) {
 
 }  // namespace
 
-std::string StateFileContents::attribute(const std::string& name) const {
-  for (const auto& [key, value] : attributes) {
-    if (key == name) return value;
-  }
-  return {};
-}
-
 void write_state_file(const fs::path& path, const Image& image, const Film& film,
                       const ImageMetadata& metadata, const ColorPipeline& pipeline,
                       const ExrOptions& options) {
