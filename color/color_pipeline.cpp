@@ -34,7 +34,11 @@
 #include "color/color_pipeline.h"
 
 #include <OpenColorIO/OpenColorIO.h>
+#if defined(__SANITIZE_THREAD__)
+// Only ThreadSanitizer builds call OpenImageIO here (below); elsewhere the program does not link
+// it (color/image_io.h).
 #include <OpenImageIO/imageio.h>
+#endif
 
 #include <algorithm>
 #include <cctype>

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "color/image_io.h"
 #include "core/app/bench_command.h"
 #include "core/app/commands.h"
 #include "core/app/merge_command.h"
@@ -328,6 +329,11 @@ int run_cli(int argc, const char* const* argv) {
   const std::vector<CLI::App*> commands = app.get_subcommands();
   agree_on_command(kExitSuccess, "", commands.empty() ? "" : commands.back()->get_name());
 
+  // The commands that write images need the image module (color/image_io.h): a missing one
+  // stops them now rather than after their work. MPI's worker ranks write none.
+  if ((render->parsed() && mpi::rank() == 0) || convert->parsed() || merge->parsed()) {
+    check_image_io();
+  }
   if (render->parsed()) {
     render_options.command_line = quote_command_line(argc, argv);
     return run_render_command(render_options);

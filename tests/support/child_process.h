@@ -11,7 +11,8 @@
 
 namespace prism::test {
 
-/// Limits applied to the prism process (in the child, before exec) by run_prism_limited.
+/// Limits applied to the prism process (in the child, before exec) by run_prism_limited, and
+/// which program that is.
 struct ProcessLimits {
   /// RLIMIT_AS in bytes, as `ulimit -v` sets it; 0: unchanged.
   unsigned long long address_space_bytes = 0;
@@ -21,6 +22,8 @@ struct ProcessLimits {
   /// When the tests run as root, run prism as user and group 65534 (nobody), so that permission
   /// bits (a read-only folder, an unreadable file) apply to it. No effect for other users.
   bool drop_root = false;
+  /// The program to run instead of the built prism (a copy of it elsewhere); empty: the built one.
+  std::string program = {};
 };
 
 /// What run_prism_limited measured besides run_prism's result.

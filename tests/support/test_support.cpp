@@ -94,7 +94,7 @@ TimedProgramResult run_prism_limited(const std::vector<std::string>& args,
       if (setrlimit(RLIMIT_AS, &r) != 0) _exit(126);
     }
     std::vector<char*> argv;
-    std::string program = PRISM_BINARY;
+    std::string program = limits.program.empty() ? std::string(PRISM_BINARY) : limits.program;
     argv.push_back(program.data());
     std::vector<std::string> copy = args;
     for (auto& a : copy) argv.push_back(a.data());
