@@ -9,12 +9,20 @@
 #include "color/state_file.h"
 
 namespace prism {
+namespace {
 
-std::string ImageFileContents::attribute(const std::string& name) const {
+/// The value of the header attribute `name` in `attributes`, or "" when absent.
+std::string attribute_in(const ImageMetadata& attributes, const std::string& name) {
   for (const auto& [key, value] : attributes) {
     if (key == name) return value;
   }
   return {};
+}
+
+}  // namespace
+
+std::string ImageFileContents::attribute(const std::string& name) const {
+  return attribute_in(attributes, name);
 }
 
 int ImageFileContents::channel(const std::string& name) const {
@@ -24,10 +32,7 @@ int ImageFileContents::channel(const std::string& name) const {
 }
 
 std::string StateFileContents::attribute(const std::string& name) const {
-  for (const auto& [key, value] : attributes) {
-    if (key == name) return value;
-  }
-  return {};
+  return attribute_in(attributes, name);
 }
 
 }  // namespace prism
