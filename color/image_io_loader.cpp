@@ -4,6 +4,7 @@
 
 #include <dlfcn.h>
 
+#include <condition_variable>
 #include <filesystem>
 #include <mutex>
 #include <string>
@@ -12,6 +13,7 @@
 #include "color/image_io.h"
 #include "color/image_io_functions.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace prism {
 namespace {
@@ -93,6 +95,43 @@ const ImageIoFunctions& image_io() { return image_io_module().functions(); }
 
 void check_image_io() { image_io_module().check_present(); }
 
+/// Where a preload's task stands; shared with the task, which may start after the preload ends.
+struct ImageIoPreload::State {
+  enum class Step { kQueued, kLoading, kDone, kCancelled };
+  std::mutex mutex;
+  std::condition_variable done;
+  Step step = Step::kQueued;
+};
+
+ImageIoPreload::ImageIoPreload(int threads) {
+  if (threads < 2) return;  // one thread: the task would wait for it, or add a second one
+  state_ = std::make_shared<State>();
+  run_beside([state = state_] {
+    using Step = State::Step;
+    {
+      std::lock_guard lock(state->mutex);
+      if (state->step != Step::kQueued) return;
+      state->step = Step::kLoading;
+    }
+    try {
+      image_io_module().functions();
+    } catch (...) {
+      // The first call that needs the module reports why it does not load.
+    }
+    std::lock_guard lock(state->mutex);
+    state->step = Step::kDone;
+    state->done.notify_all();
+  });
+}
+
+ImageIoPreload::~ImageIoPreload() {
+  if (!state_) return;
+  using Step = State::Step;
+  std::unique_lock lock(state_->mutex);
+  if (state_->step == Step::kQueued) state_->step = Step::kCancelled;
+  state_->done.wait(lock, [&] { return state_->step != Step::kLoading; });
+}
+
 namespace color_detail {
 
 void write_exr_file(const std::filesystem::path& path, const Image& image,
@@ -133,6 +172,9 @@ ImageMetadata read_state_file_attributes(const std::filesystem::path& path) {
 }
 
 SceneTexturesReport load_scene_textures(Scene& scene, const ColorPipeline& pipeline) {
+  // Nothing to read (the module's function returns the same empty report): a scene without
+  // textures does not wait here for the module its render loads beside its samples.
+  if (scene.textures.empty()) return {};
   return image_io().load_scene_textures(scene, pipeline);
 }
 

@@ -44,6 +44,14 @@ void parallel_for_range(size_t count, const std::function<void(size_t, size_t)>&
 /// otherwise. An exception from either is rethrown here once both are done.
 void parallel_invoke(const std::function<void()>& a, const std::function<void()>& b);
 
+/// Runs body() once beside the caller and returns at once. Under oneTBB body is a task of the
+/// current arena that a worker takes when it is free: loops started meanwhile run with one
+/// thread fewer until body returns, never with more threads than the limit (ThreadLimit). The
+/// std::thread implementation runs body on the calling thread before returning. body must not
+/// throw; the caller learns that it has run by its own means (and must not end the process
+/// while it runs).
+void run_beside(std::function<void()> body);
+
 /// Limits the threads of every parallel loop (and of oneTBB, which Embree uses) to `threads`
 /// while alive; threads <= 0 means all hardware threads. When several are alive the smallest
 /// limit holds (oneTBB's global_control rule).

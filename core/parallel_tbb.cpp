@@ -48,6 +48,8 @@ void parallel_invoke(const std::function<void()>& a, const std::function<void()>
   tbb::parallel_invoke(a, b);
 }
 
+void run_beside(std::function<void()> body) { tbb::this_task_arena::enqueue(std::move(body)); }
+
 struct ThreadLimit::State {
   explicit State(int threads) : control(tbb::global_control::max_allowed_parallelism, threads) {}
   tbb::global_control control;

@@ -223,6 +223,8 @@ struct ThreadLimit::State {
   std::multiset<int>::iterator entry;
 };
 
+void run_beside(std::function<void()> body) { body(); }
+
 ThreadLimit::ThreadLimit(int threads) {
   threads_ = threads > 0 ? threads : hardware_threads();
   state_ = std::make_unique<State>(threads_);

@@ -69,5 +69,28 @@ TEST(ColorImageIo, MissingModuleIsOneLineBeforeTheRender) {
   EXPECT_EQ(info.exit_code, 0) << info.err;
 }
 
+TEST(ColorImageIo, ModuleThatDoesNotLoadIsOneLineAndNoImage) {
+  TestDirs dirs("image_io_broken");
+  // A copy of the program beside a "module" that is no shared library: it is there, so the
+  // render starts, and it fails to load in the background (two threads) or at the write (one).
+  const std::filesystem::path program = dirs.root / "prism";
+  std::filesystem::copy_file(PRISM_BINARY, program);
+  write_text(dirs.root / "libprism_image_io.so", "not a shared library\n");
+  const std::string scene = dirs.scene("tiny.dae", kTinyCollada);
+  for (const char* threads : {"1", "2"}) {
+    SCOPED_TRACE(std::string("-t ") + threads);
+    ProcessLimits limits;
+    limits.program = program.string();
+    const TimedProgramResult timed =
+        run_prism_limited({"render", scene, "-r", "16", "12", "-s", "4", "-t", threads, "-q", "-f",
+                           (dirs.out / "x.exr").string()},
+                          limits);
+    expect_one_line_error(
+        timed.result, 1,
+        {"cannot load prism's image module", (dirs.root / "libprism_image_io.so").string()});
+    EXPECT_EQ(dir_entries(dirs.out), std::vector<std::string>{}) << "files left behind";
+  }
+}
+
 }  // namespace
 }  // namespace prism::test

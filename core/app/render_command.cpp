@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "color/color_pipeline.h"
+#include "color/image_io.h"
 #include "color/image_output.h"
 #include "color/output_plan.h"
 #include "core/app/commands.h"
@@ -190,6 +191,10 @@ int render_command(const RenderOptions& given) {
   ProgressReporter progress("rendering", samples_remaining(schedule, film), options.quiet);
   // From here a first SIGINT/SIGTERM stops the render and writes what it has.
   const InterruptHandlers interrupts;
+  // The image module loads on one of the render's threads while the others render
+  // (color/image_io.h). Only now: a thread started while it loads (the interrupt handlers' one)
+  // would wait for the load to end. Not under MPI, whose lanes are threads of their own.
+  const ImageIoPreload image_io_preload(distributed ? 1 : r.thread_limit->threads());
   const auto run_start = std::chrono::steady_clock::now();
   std::function<void(const Film&)> checkpoint;
   if (!options.checkpoint.empty()) {
