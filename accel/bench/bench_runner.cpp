@@ -44,27 +44,51 @@ size_t trace(const Accelerator& accel, const BenchRaySet& set, size_t begin, siz
   return hits;
 }
 
-// One pass over the set.
-PassResult time_pass(const Accelerator& accel, const BenchRaySet& set, ThreadArena& arena) {
+/// Traces rays [begin, end) of the set repeated end-to-end (index i is ray i mod the set's size).
+size_t trace_repeated(const Accelerator& accel, const BenchRaySet& set, size_t begin, size_t end) {
+  const size_t n = set.rays.size();
+  size_t hits = 0;
+  while (begin < end) {
+    const size_t offset = begin % n;
+    const size_t count = std::min(end - begin, n - offset);
+    hits += trace(accel, set, offset, offset + count);
+    begin += count;
+  }
+  return hits;
+}
+
+/// How many times a pass traces the set: enough for min_rays rays, at least once.
+size_t repeats_for(const BenchRaySet& set, size_t min_rays) {
+  const size_t n = set.rays.size();
+  return std::max<size_t>(1, (min_rays + n - 1) / n);
+}
+
+// One pass: the set, `repeats` times; hits are those of one time through it.
+PassResult time_pass(const Accelerator& accel, const BenchRaySet& set, ThreadArena& arena,
+                     size_t repeats) {
   const int threads = arena.threads();
+  const size_t total = repeats * set.rays.size();
   const double cpu_start = process_cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   size_t hits = 0;
   if (threads == 1) {
-    hits = trace(accel, set, 0, set.rays.size());
+    hits = trace_repeated(accel, set, 0, total);
   } else {
     arena.execute([&] {
       hits = parallel_reduce(
-          0, set.rays.size(), 2048, size_t{0},
-          [&](size_t begin, size_t end, size_t n) { return n + trace(accel, set, begin, end); },
+          0, total, 2048, size_t{0},
+          [&](size_t begin, size_t end, size_t n) {
+            return n + trace_repeated(accel, set, begin, end);
+          },
           [](size_t a, size_t b) { return a + b; });
     });
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpu_seconds = (process_cpu_seconds() - cpu_start) / threads;
-  const auto rays = static_cast<double>(set.rays.size());
-  return {rays / std::max(seconds, 1e-9) / 1e6, rays / std::max(cpu_seconds, 1e-9) / 1e6, hits};
+  const auto rays = static_cast<double>(total);
+  return {rays / std::max(seconds, 1e-9) / 1e6, rays / std::max(cpu_seconds, 1e-9) / 1e6,
+          hits / repeats};
 }
 
 double median(std::vector<double> v) {
@@ -94,7 +118,7 @@ Built build_backend(const BenchBackend& backend, const SceneGeometry& geometry, 
 
 BenchRow make_row(const std::string& scene, const SceneGeometry& geometry,
                   const BenchBackend& backend, const Built& built, int threads,
-                  const BenchRaySet& set, const Timing& timing) {
+                  const BenchRaySet& set, size_t rays_per_pass, const Timing& timing) {
   const AccelStats stats = built.accel->stats();
   BenchRow row;
   row.scene = scene;
@@ -112,6 +136,7 @@ BenchRow make_row(const std::string& scene, const SceneGeometry& geometry,
   row.threads = threads;
   row.ray_set = set.name;
   row.rays = set.rays.size();
+  row.rays_per_pass = rays_per_pass;
   row.mrays_per_s = median(timing.mrays);
   row.mrays_min =
       timing.mrays.empty() ? 0.0 : *std::min_element(timing.mrays.begin(), timing.mrays.end());
@@ -166,11 +191,12 @@ std::vector<BenchRow> bench_scene(const std::string& scene_name, const SceneGeom
         if (set.rays.empty()) continue;
         Timing& ref = reference_timing[{threads, s}];
         Timing* oth = other ? &other_timing[{threads, s}] : nullptr;
+        const size_t repeats = repeats_for(set, settings.min_rays_per_pass);
         // Warm-up: caches, page faults, the arena's workers.
-        ref.hits = time_pass(*reference.accel, set, arena).hits;
-        if (other) oth->hits = time_pass(*other, set, arena).hits;
+        ref.hits = time_pass(*reference.accel, set, arena, repeats).hits;
+        if (other) oth->hits = time_pass(*other, set, arena, repeats).hits;
         auto timed = [&](const Accelerator& accel, Timing& timing) {
-          const PassResult r = time_pass(accel, set, arena);
+          const PassResult r = time_pass(accel, set, arena, repeats);
           timing.mrays.push_back(r.mrays);
           timing.cpu_mrays.push_back(r.cpu_mrays);
         };
@@ -189,8 +215,9 @@ std::vector<BenchRow> bench_scene(const std::string& scene_name, const SceneGeom
     std::map<TimingKey, Timing> timing;
     run_pair(built.accel.get(), timing);
     for (const auto& [key, t] : timing) {
-      rows.push_back(
-          make_row(scene_name, geometry, backends[b], built, key.first, sets[key.second], t));
+      const BenchRaySet& set = sets[key.second];
+      rows.push_back(make_row(scene_name, geometry, backends[b], built, key.first, set,
+                              repeats_for(set, settings.min_rays_per_pass) * set.rays.size(), t));
     }
     if (log) {
       log(scene_name + ": " + backends[b].accel + " " + backends[b].split + " " +
@@ -201,8 +228,10 @@ std::vector<BenchRow> bench_scene(const std::string& scene_name, const SceneGeom
 
   std::vector<BenchRow> reference_rows;
   for (const auto& [key, t] : reference_timing) {
+    const BenchRaySet& set = sets[key.second];
     reference_rows.push_back(
-        make_row(scene_name, geometry, backends[0], reference, key.first, sets[key.second], t));
+        make_row(scene_name, geometry, backends[0], reference, key.first, set,
+                 repeats_for(set, settings.min_rays_per_pass) * set.rays.size(), t));
   }
   for (BenchRow& row : rows) {
     for (const BenchRow& ref : reference_rows) {
@@ -219,16 +248,27 @@ std::vector<BenchRow> bench_scene(const std::string& scene_name, const SceneGeom
 nlohmann::json bench_rows_to_json(const std::vector<BenchRow>& rows) {
   nlohmann::json out = nlohmann::json::array();
   for (const BenchRow& r : rows) {
-    out.push_back({{"scene", r.scene},         {"triangles", r.triangles},
-                   {"accel", r.accel},         {"layout", r.layout},
-                   {"split", r.split},         {"isa", r.isa},
-                   {"threads", r.threads},     {"ray_set", r.ray_set},
-                   {"rays", r.rays},           {"mrays_per_s", r.mrays_per_s},
-                   {"mrays_min", r.mrays_min}, {"mrays_max", r.mrays_max},
-                   {"passes", r.passes},       {"cpu_mrays_per_s", r.cpu_mrays_per_s},
-                   {"build_ms", r.build_ms},   {"bytes_per_triangle", r.bytes_per_triangle},
-                   {"nodes", r.nodes},         {"sah_cost", r.sah_cost},
-                   {"hits", r.hits},           {"hit_difference", r.hit_difference},
+    out.push_back({{"scene", r.scene},
+                   {"triangles", r.triangles},
+                   {"accel", r.accel},
+                   {"layout", r.layout},
+                   {"split", r.split},
+                   {"isa", r.isa},
+                   {"threads", r.threads},
+                   {"ray_set", r.ray_set},
+                   {"rays", r.rays},
+                   {"rays_per_pass", r.rays_per_pass},
+                   {"mrays_per_s", r.mrays_per_s},
+                   {"mrays_min", r.mrays_min},
+                   {"mrays_max", r.mrays_max},
+                   {"passes", r.passes},
+                   {"cpu_mrays_per_s", r.cpu_mrays_per_s},
+                   {"build_ms", r.build_ms},
+                   {"bytes_per_triangle", r.bytes_per_triangle},
+                   {"nodes", r.nodes},
+                   {"sah_cost", r.sah_cost},
+                   {"hits", r.hits},
+                   {"hit_difference", r.hit_difference},
                    {"valid", r.valid}});
   }
   return out;

@@ -31,6 +31,7 @@ struct BenchRow {
   int threads = 1;
   std::string ray_set;
   size_t rays = 0;
+  size_t rays_per_pass = 0;  ///< rays a timed pass traces: the set, repeated (BenchSettings)
   double mrays_per_s = 0.0;  ///< median over the timed passes
   double mrays_min = 0.0, mrays_max = 0.0;
   int passes = 0;
@@ -50,6 +51,11 @@ struct BenchSettings {
   std::vector<int> threads{1, 2};
   int passes = 5;         ///< timed passes after one warm-up pass
   int build_repeats = 1;  ///< builds per backend; build_ms is their median
+  /// A timed pass traces its set as many whole times as it takes to trace at least this many
+  /// rays (at least once). A set of a few thousand bounce rays is otherwise a pass of about a
+  /// millisecond, which measures the clock, the workers' wake-up and (at 2 threads) a split into
+  /// two or three chunks more than the traversal.
+  size_t min_rays_per_pass = 0;
 };
 
 /// Builds every backend on `geometry` and times it on every ray set at every thread count.

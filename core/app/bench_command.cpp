@@ -155,6 +155,9 @@ std::vector<std::string> standard_bench_scenes(bool quick) {
 int run_bench_command(const BenchOptions& options) {
   if (options.json.empty()) throw Error(ErrorKind::kUsage, "--json FILE is required");
   if (options.passes < 5) throw Error(ErrorKind::kUsage, "--passes must be at least 5");
+  if (options.min_pass_rays < 0 || options.min_pass_rays > (1LL << 32)) {
+    throw Error(ErrorKind::kUsage, "--min-pass-rays must be between 0 and 2^32");
+  }
   for (int t : options.threads) {
     if (t < 1 || t > 256) throw Error(ErrorKind::kUsage, "--threads values must be in 1..256");
   }
@@ -187,6 +190,10 @@ int run_bench_command(const BenchOptions& options) {
       stride = choose_stride(*tracer, sets, options.max_pass_seconds);
     }
     thin_ray_sets(sets, stride);
+    size_t largest_set = 0;
+    for (const BenchRaySet& set : sets) largest_set = std::max(largest_set, set.rays.size());
+    settings.min_rays_per_pass =
+        options.min_pass_rays > 0 ? size_t(options.min_pass_rays) : largest_set;
     std::fprintf(stderr, "bench: %s: %zu triangles%s\n", name.c_str(),
                  scene.geometry.triangle_count(),
                  stride > 1 ? fmt::format(", one ray in {} (slow scene)", stride).c_str() : "");

@@ -22,6 +22,9 @@ struct BenchOptions {
   /// A scene whose sets would take Embree longer than this per pass (one thread) is benched on
   /// every k-th ray instead, the same rays for every backend.
   double max_pass_seconds = 1.0;
+  /// A timed pass traces a smaller ray set several whole times, up to at least this many rays,
+  /// the same for every backend; 0: as many as the scene's largest set (its primary rays).
+  long long min_pass_rays = 0;
 };
 
 /// `prism bench`: builds every backend on every scene and times them on the same stored rays;

@@ -192,6 +192,11 @@ void add_bench_options(CLI::App& bench, BenchOptions& o) {
       ->allow_extra_args(false);
   bench.add_option("--set", o.set, "component parameter key=value")->allow_extra_args(false);
   bench
+      .add_option("--min-pass-rays", o.min_pass_rays,
+                  "each timed pass repeats a smaller ray set up to at least this many rays (0: as "
+                  "many as the scene's largest set; 1: every set once)")
+      ->capture_default_str();
+  bench
       .add_option("--max-pass-seconds", o.max_pass_seconds,
                   "bench slow scenes on every k-th ray so one Embree pass takes at most this")
       ->capture_default_str();
