@@ -36,9 +36,8 @@ class ImageIoPreload {
   ImageIoPreload(const ImageIoPreload&) = delete;
   ImageIoPreload& operator=(const ImageIoPreload&) = delete;
 
-  struct State;
-
  private:
+  struct State;
   std::shared_ptr<State> state_;
 };
 
