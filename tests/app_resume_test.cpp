@@ -302,13 +302,32 @@ TEST(AppResume, KilledAtRandomMomentsAndResumedUntilDoneGivesTheUninterruptedBit
   // 64 passes of 4 samples, of 1 under a sanitizer (a quarter of the work, still seconds).
   const int spp = sanitizer_share(256);
   run_ok(render_args(plus(spheres(spp), {"-f", ref.string()})));
-  // The uninterrupted run's wall time, start-up included: kills come after 10% to 50% of it, so
-  // that no run from the start, nor the first resume, can finish (several kills), while most
-  // runs get through a few checkpoints (0.05 s apart) before they die.
+  // The uninterrupted run's wall time, start-up included: kills come after 10% to 50% of it (or
+  // from the first checkpoint on, when that comes later), so that no run from the start, nor the
+  // first resume, can finish (several kills), while most runs get through a few checkpoints
+  // (0.05 s apart) before they die.
   const double run_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // When a run with checkpoints writes its first: the image module that writes it loads beside
+  // the first samples (color/image_io.h), which under a sanitizer is most of a short run, and a
+  // run killed before it leaves nothing to resume. Kills come after it.
+  double first_checkpoint_seconds = 0.0;
+  {
+    const fs::path probe = dirs.root / "probe_ck.exr";
+    const auto probe_start = std::chrono::steady_clock::now();
+    PrismProcess probe_run(
+        render_args(plus(spheres(spp), {"--checkpoint", probe.string(), "--checkpoint-interval",
+                                        "0.05", "-f", (dirs.root / "probe.exr").string()})),
+        log);
+    ASSERT_TRUE(wait_for_file(probe, probe_run)) << read_bytes(log);
+    first_checkpoint_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - probe_start).count();
+    ASSERT_EQ(probe_run.wait(), 0) << read_bytes(log);
+  }
+  const double earliest = std::max(0.1 * run_seconds, first_checkpoint_seconds);
   std::mt19937 random(184);
-  std::uniform_real_distribution<double> delay(0.1 * run_seconds, 0.5 * run_seconds);
+  std::uniform_real_distribution<double> delay(
+      earliest, std::max(0.5 * run_seconds, earliest + 0.4 * (run_seconds - earliest)));
 
   const std::vector<std::string> fresh =
       render_args(plus(spheres(spp), {"--checkpoint", ck.string(), "--checkpoint-interval", "0.05",
