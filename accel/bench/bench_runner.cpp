@@ -18,6 +18,7 @@ struct Timing {
   std::vector<double> mrays;
   std::vector<double> cpu_mrays;
   size_t hits = 0;
+  size_t rays_per_pass = 0;
 };
 
 struct PassResult {
@@ -118,7 +119,7 @@ Built build_backend(const BenchBackend& backend, const SceneGeometry& geometry, 
 
 BenchRow make_row(const std::string& scene, const SceneGeometry& geometry,
                   const BenchBackend& backend, const Built& built, int threads,
-                  const BenchRaySet& set, size_t rays_per_pass, const Timing& timing) {
+                  const BenchRaySet& set, const Timing& timing) {
   const AccelStats stats = built.accel->stats();
   BenchRow row;
   row.scene = scene;
@@ -136,7 +137,7 @@ BenchRow make_row(const std::string& scene, const SceneGeometry& geometry,
   row.threads = threads;
   row.ray_set = set.name;
   row.rays = set.rays.size();
-  row.rays_per_pass = rays_per_pass;
+  row.rays_per_pass = timing.rays_per_pass;
   row.mrays_per_s = median(timing.mrays);
   row.mrays_min =
       timing.mrays.empty() ? 0.0 : *std::min_element(timing.mrays.begin(), timing.mrays.end());
@@ -192,6 +193,8 @@ std::vector<BenchRow> bench_scene(const std::string& scene_name, const SceneGeom
         Timing& ref = reference_timing[{threads, s}];
         Timing* oth = other ? &other_timing[{threads, s}] : nullptr;
         const size_t repeats = repeats_for(set, settings.min_rays_per_pass);
+        ref.rays_per_pass = repeats * set.rays.size();
+        if (other) oth->rays_per_pass = ref.rays_per_pass;
         // Warm-up: caches, page faults, the arena's workers.
         ref.hits = time_pass(*reference.accel, set, arena, repeats).hits;
         if (other) oth->hits = time_pass(*other, set, arena, repeats).hits;
@@ -215,9 +218,8 @@ std::vector<BenchRow> bench_scene(const std::string& scene_name, const SceneGeom
     std::map<TimingKey, Timing> timing;
     run_pair(built.accel.get(), timing);
     for (const auto& [key, t] : timing) {
-      const BenchRaySet& set = sets[key.second];
-      rows.push_back(make_row(scene_name, geometry, backends[b], built, key.first, set,
-                              repeats_for(set, settings.min_rays_per_pass) * set.rays.size(), t));
+      rows.push_back(
+          make_row(scene_name, geometry, backends[b], built, key.first, sets[key.second], t));
     }
     if (log) {
       log(scene_name + ": " + backends[b].accel + " " + backends[b].split + " " +
@@ -228,10 +230,8 @@ std::vector<BenchRow> bench_scene(const std::string& scene_name, const SceneGeom
 
   std::vector<BenchRow> reference_rows;
   for (const auto& [key, t] : reference_timing) {
-    const BenchRaySet& set = sets[key.second];
     reference_rows.push_back(
-        make_row(scene_name, geometry, backends[0], reference, key.first, set,
-                 repeats_for(set, settings.min_rays_per_pass) * set.rays.size(), t));
+        make_row(scene_name, geometry, backends[0], reference, key.first, sets[key.second], t));
   }
   for (BenchRow& row : rows) {
     for (const BenchRow& ref : reference_rows) {
