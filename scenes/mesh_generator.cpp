@@ -221,6 +221,103 @@ TriangleMesh make_folded_slivers(size_t n, const CounterRng& rng) {
   return mesh;
 }
 
+/// Appends the axis-aligned box [lo, hi]: 8 vertices, 12 triangles wound outward.
+void add_box(TriangleMesh& mesh, const Vec3& lo, const Vec3& hi) {
+  const size_t base = mesh.positions.size();
+  for (int i = 0; i < 8; ++i) {
+    mesh.positions.emplace_back(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+  }
+  constexpr uint32_t kQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : kQuads) {
+    mesh.triangles.push_back(tri(base + q[0], base + q[1], base + q[2]));
+    mesh.triangles.push_back(tri(base + q[0], base + q[2], base + q[3]));
+  }
+}
+
+/// A cutaway floor plan, as the architectural meshes of issue 12 mix large and small
+/// triangles: rooms x rooms square rooms over [-1,1]^2 with their floors at z = 0 (two
+/// triangles each), no ceilings, walls kInteriorWallHeight high and 0.01 thick as boxes (a
+/// doorway in each inner one), and the rest of the n triangles in furniture on the floors:
+/// boxes (12 triangles, 0.005 to 0.06 wide) and small spheres (80 triangles, radius 0.005 to
+/// 0.03), one in four a sphere. About n triangles (at least the rooms' own); inside
+/// [-1,1]^2 x [0, kInteriorWallHeight].
+constexpr float kInteriorWallHeight = 0.2f;
+TriangleMesh make_interior(size_t n, const CounterRng& rng) {
+  constexpr float kHalfThickness = 0.005f;
+  constexpr size_t kPropSphereStacks = 5;  // 2 x 10 x 4 = 80 triangles
+  const size_t rooms = std::clamp<size_t>(
+      static_cast<size_t>(std::llround(std::sqrt(static_cast<double>(n) / 1500.0))), 2, 256);
+  const float room = 2.0f / static_cast<float>(rooms);
+  const TriangleMesh unit_sphere = make_sphere(kPropSphereStacks, 2 * kPropSphereStacks, nullptr);
+  const size_t structure = 2 * rooms * rooms + 2 * (rooms + 1) * rooms * 24;
+  const size_t capacity = std::max(n, structure) + 2 * unit_sphere.triangles.size();
+  TriangleMesh mesh;
+  // Boxes and spheres have fewer vertices than triangles; the floors' quads four for two.
+  reserve_mesh(mesh, capacity + 2 * rooms * rooms, capacity);
+  const auto grid = [&](size_t i) { return i == rooms ? 1.0f : -1.0f + room * float(i); };
+  for (size_t y = 0; y < rooms; ++y) {
+    for (size_t x = 0; x < rooms; ++x) {
+      const size_t base = mesh.positions.size();
+      mesh.positions.emplace_back(grid(x), grid(y), 0.0f);
+      mesh.positions.emplace_back(grid(x + 1), grid(y), 0.0f);
+      mesh.positions.emplace_back(grid(x + 1), grid(y + 1), 0.0f);
+      mesh.positions.emplace_back(grid(x), grid(y + 1), 0.0f);
+      mesh.triangles.push_back(tri(base, base + 1, base + 2));
+      mesh.triangles.push_back(tri(base, base + 2, base + 3));
+    }
+  }
+  // Walls along x = grid(i) and y = grid(i), one segment per room side; inner ones have a
+  // doorway of a third of the side in the middle.
+  for (int axis = 0; axis < 2; ++axis) {
+    for (size_t i = 0; i <= rooms; ++i) {
+      const bool outer = i == 0 || i == rooms;
+      const float at = std::clamp(grid(i), -1.0f + kHalfThickness, 1.0f - kHalfThickness);
+      for (size_t j = 0; j < rooms; ++j) {
+        const float from = grid(j), to = grid(j + 1);
+        const auto wall = [&](float a, float b) {
+          Vec3 lo(at - kHalfThickness, a, 0.0f), hi(at + kHalfThickness, b, kInteriorWallHeight);
+          if (axis == 1) {
+            std::swap(lo.x, lo.y);
+            std::swap(hi.x, hi.y);
+          }
+          add_box(mesh, lo, hi);
+        };
+        if (outer) {
+          wall(from, to);
+        } else {
+          wall(from, from + room / 3.0f);
+          wall(to - room / 3.0f, to);
+        }
+      }
+    }
+  }
+  for (uint64_t k = 0;; ++k) {
+    const bool sphere = rng.unit(k, 0) < 0.25f;
+    const size_t count = sphere ? unit_sphere.triangles.size() : 12;
+    if (mesh.triangles.size() + count > n) break;
+    const size_t r =
+        std::min(rooms * rooms - 1, static_cast<size_t>(rng.unit(k, 1) * rooms * rooms));
+    const float x0 = grid(r % rooms) + 0.035f, y0 = grid(r / rooms) + 0.035f;
+    const float span = room - 0.07f;
+    const float cx = x0 + span * rng.unit(k, 2), cy = y0 + span * rng.unit(k, 3);
+    if (sphere) {
+      const float radius = rng.uniform(k, 4, 0.005f, 0.03f);
+      const Vec3 center(cx, cy, radius);
+      const size_t base = mesh.positions.size();
+      for (const Vec3& p : unit_sphere.positions) mesh.positions.push_back(center + radius * p);
+      for (const glm::uvec3& t : unit_sphere.triangles) {
+        mesh.triangles.push_back(tri(base + t.x, base + t.y, base + t.z));
+      }
+    } else {
+      const Vec3 half(rng.uniform(k, 4, 0.0025f, 0.03f), rng.uniform(k, 5, 0.0025f, 0.03f), 0.0f);
+      const float height = rng.uniform(k, 6, 0.005f, 0.12f);
+      add_box(mesh, Vec3(cx, cy, 0.0f) - half, Vec3(cx + half.x, cy + half.y, height));
+    }
+  }
+  return mesh;
+}
+
 /// cells x cells squares over [-1,1]^2 at z = 0, two triangles each, facing +z; every interior
 /// vertex is shared by six triangles.
 TriangleMesh make_grid(size_t cells) {
@@ -254,9 +351,10 @@ GeneratedMeshKind parse_generated_mesh_kind(const std::string& name) {
   if (name == "slivers") return GeneratedMeshKind::kSlivers;
   if (name == "grid") return GeneratedMeshKind::kGrid;
   if (name == "folded_slivers") return GeneratedMeshKind::kFoldedSlivers;
-  throw Error(ErrorKind::kUsage,
-              "unknown generated mesh kind '" + name +
-                  "'; available: sphere, noisy_sphere, soup, slivers, grid, folded_slivers");
+  if (name == "interior") return GeneratedMeshKind::kInterior;
+  throw Error(ErrorKind::kUsage, "unknown generated mesh kind '" + name +
+                                     "'; available: sphere, noisy_sphere, soup, slivers, grid, "
+                                     "folded_slivers, interior");
 }
 
 std::string to_string(GeneratedMeshKind kind) {
@@ -273,6 +371,8 @@ std::string to_string(GeneratedMeshKind kind) {
       return "grid";
     case GeneratedMeshKind::kFoldedSlivers:
       return "folded_slivers";
+    case GeneratedMeshKind::kInterior:
+      return "interior";
   }
   return "unknown";
 }
@@ -305,6 +405,9 @@ TriangleMesh generate_mesh(GeneratedMeshKind kind, size_t triangle_count, uint64
       break;
     case GeneratedMeshKind::kFoldedSlivers:
       mesh = make_folded_slivers(triangle_count, rng);
+      break;
+    case GeneratedMeshKind::kInterior:
+      mesh = make_interior(triangle_count, rng);
       break;
     case GeneratedMeshKind::kGrid: {
       const double cells = std::sqrt(static_cast<double>(triangle_count) / 2.0);

@@ -19,15 +19,19 @@ enum class GeneratedMeshKind {
                    ///< sharing edges and vertices
   kFoldedSlivers,  ///< pairs of thin triangles (1.4 x 0.0003..0.003) folded along a shared long
                    ///< edge by 0.05..30 degrees, as thin panels of architectural meshes
+  kInterior,       ///< a cutaway floor plan: rooms with large floor triangles and thin walls,
+                   ///< the rest furniture-sized boxes and spheres (large and small triangles
+                   ///< mixed), inside [-1,1]^2 x [0, 0.2]
 };
 
-/// Parses "sphere", "noisy_sphere", "soup", "slivers", "grid", "folded_slivers"; throws
+/// Parses "sphere", "noisy_sphere", "soup", "slivers", "grid", "folded_slivers", "interior"; throws
 /// Error(kUsage) listing them.
 GeneratedMeshKind parse_generated_mesh_kind(const std::string& name);
 std::string to_string(GeneratedMeshKind kind);
 
 /// A mesh of `kind` with approximately `triangle_count` triangles (exact for soup and slivers;
-/// the nearest tessellation for sphere and grid). material_id is set to `material_id`.
+/// the nearest tessellation for sphere and grid; for interior at least its rooms' walls and
+/// floors). material_id is set to `material_id`.
 TriangleMesh generate_mesh(GeneratedMeshKind kind, size_t triangle_count, uint64_t seed = 1,
                            uint32_t material_id = 0);
 

@@ -107,8 +107,8 @@ SceneGeometry generated(GeneratedMeshKind kind, size_t triangles) {
 /// The scenes, by test-name-safe name: generated ones, then one per shared CS184 file.
 std::vector<std::string> scene_names() {
   std::vector<std::string> names = {
-      "generated_sphere", "generated_noisy_sphere",   "generated_soup", "generated_slivers",
-      "generated_grid",   "generated_folded_slivers", "cornell_spheres"};
+      "generated_sphere", "generated_noisy_sphere",   "generated_soup",     "generated_slivers",
+      "generated_grid",   "generated_folded_slivers", "generated_interior", "cornell_spheres"};
   const std::vector<std::string> cs184 = test::cs184_scene_names();
   for (const auto& file : cs184) names.push_back("cs184_" + file.substr(0, file.size() - 4));
   if (cs184.empty()) names.push_back("cs184_absent");  // skips with a message
@@ -135,6 +135,7 @@ std::optional<SceneGeometry> load_geometry(const std::string& name) {
   if (name == "generated_folded_slivers") {
     return generated(GeneratedMeshKind::kFoldedSlivers, 2000);
   }
+  if (name == "generated_interior") return generated(GeneratedMeshKind::kInterior, 4000);
   if (name == "cornell_spheres") return cornell_box_with_spheres();
   const auto path = test::cs184_scene(name.substr(6) + ".dae");
   if (!path) return std::nullopt;

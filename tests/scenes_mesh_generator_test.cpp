@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -14,9 +15,9 @@ namespace prism {
 namespace {
 
 const GeneratedMeshKind kAllKinds[] = {
-    GeneratedMeshKind::kSphere, GeneratedMeshKind::kNoisySphere,
-    GeneratedMeshKind::kSoup,   GeneratedMeshKind::kSlivers,
-    GeneratedMeshKind::kGrid,   GeneratedMeshKind::kFoldedSlivers};
+    GeneratedMeshKind::kSphere,  GeneratedMeshKind::kNoisySphere, GeneratedMeshKind::kSoup,
+    GeneratedMeshKind::kSlivers, GeneratedMeshKind::kGrid,        GeneratedMeshKind::kFoldedSlivers,
+    GeneratedMeshKind::kInterior};
 
 bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; }
 
@@ -145,6 +146,32 @@ TEST(ScenesMeshGenerator, StaysInsideTheDocumentedBounds) {
   EXPECT_LT(lo, 0.97f);
   EXPECT_GT(hi, 1.03f);
   EXPECT_GT(lo, 0.6f);
+}
+
+TEST(ScenesMeshGenerator, InteriorMixesRoomsAndFurniture) {
+  for (const size_t n : {20000u, 200000u}) {
+    const TriangleMesh mesh = generate_mesh(GeneratedMeshKind::kInterior, n, 4);
+    // Furniture fills the count up to less than one sphere (80 triangles) short of it.
+    EXPECT_LE(mesh.triangle_count(), n);
+    EXPECT_GT(mesh.triangle_count(), n - 80);
+    // The floors span [-1,1]^2 at z = 0 and the walls reach 0.2.
+    EXPECT_EQ(mesh.bounds().lower, Vec3(-1.0f, -1.0f, 0.0f));
+    EXPECT_EQ(mesh.bounds().upper, Vec3(1.0f, 1.0f, 0.2f));
+    float smallest = std::numeric_limits<float>::infinity(), largest = 0.0f;
+    size_t floor_triangles = 0;
+    for (const auto& t : mesh.triangles) {
+      const Vec3 &a = mesh.positions[t.x], &b = mesh.positions[t.y], &c = mesh.positions[t.z];
+      const Vec3 normal = glm::cross(b - a, c - a);
+      const float area = 0.5f * glm::length(normal);
+      ASSERT_GT(area, 0.0f);
+      smallest = std::min(smallest, area);
+      largest = std::max(largest, area);
+      floor_triangles += a.z == 0.0f && b.z == 0.0f && c.z == 0.0f && normal.z > 0.0f;
+    }
+    // Room floors against the sides of the smallest boxes: large and small triangles mixed.
+    EXPECT_GT(largest / smallest, 1e3f) << n;
+    EXPECT_GE(floor_triangles, 8u) << n;  // at least 2 x 2 rooms, two triangles each
+  }
 }
 
 TEST(ScenesMeshGenerator, GridSharesEdgesAndVertices) {

@@ -50,6 +50,7 @@ int run_list_command() {
       {GeneratedMeshKind::kSlivers, "long thin triangles (aspect ~1000:1)"},
       {GeneratedMeshKind::kGrid, "flat grid in the z=0 plane sharing edges and vertices"},
       {GeneratedMeshKind::kFoldedSlivers, "pairs of thin triangles folded along a long edge"},
+      {GeneratedMeshKind::kInterior, "rooms with walls, floors and furniture (sizes mixed)"},
   };
   fmt::print("generated meshes:\n");
   for (const auto& [kind, description] : kinds) {
