@@ -139,7 +139,7 @@ std::vector<std::string> standard_bench_scenes(bool quick) {
                                              ? std::vector<std::string>{"10k", "100k"}
                                              : std::vector<std::string>{"10k", "100k", "1M", "10M"};
   for (const std::string& size : sizes) {
-    for (const char* kind : {"sphere", "noisy_sphere", "soup", "slivers"}) {
+    for (const char* kind : {"sphere", "noisy_sphere", "soup", "slivers", "interior"}) {
       out.push_back(std::string("gen:") + kind + ":" + size);
     }
   }
