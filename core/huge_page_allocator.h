@@ -1,7 +1,8 @@
 #pragma once
 
-// An allocator for the few big arrays of a render: the film's exact sums (192 bytes a pixel)
-// and the pixels of the images it resolves to (core/film.h, core/image.h).
+// An allocator for the few big arrays of a render: the film's exact sums (192 bytes a pixel),
+// the pixels of the images it resolves to (core/film.h, core/image.h), and the wide BVH's nodes
+// and triangle blocks (accel/bvh/wide_bvh.h).
 
 #include <sys/mman.h>
 

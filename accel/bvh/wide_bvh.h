@@ -10,14 +10,17 @@
 #include "accel/bvh/build_reference.h"
 #include "accel/bvh/triangle_block.h"
 #include "accel/bvh/wide_node.h"
+#include "core/huge_page_allocator.h"
 
 namespace prism {
 
-/// A binary tree collapsed into W-wide nodes, with the leaf primitives copied into blocks.
+/// A binary tree collapsed into W-wide nodes, with the leaf primitives copied into blocks. The
+/// nodes and triangle blocks of a big tree lie in transparent huge pages: incoherent rays
+/// through a tree larger than the caches miss the TLB at almost every node with 4 KiB pages.
 template <int W>
 struct WideBvh {
-  std::vector<WideNode<W>> nodes;
-  std::vector<TriangleBlock> triangle_blocks;
+  std::vector<WideNode<W>, HugePageAllocator<WideNode<W>>> nodes;
+  std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> triangle_blocks;
   std::vector<SphereBlock> sphere_blocks;
   uint32_t root = 0;         ///< a node index or a leaf reference
   bool empty = true;         ///< no primitives: every query misses
