@@ -235,20 +235,26 @@ void add_box(TriangleMesh& mesh, const Vec3& lo, const Vec3& hi) {
   }
 }
 
+constexpr float kInteriorWallHeight = 0.2f;
+/// Rooms a side up to which the furniture has its full size (about a million triangles).
+constexpr size_t kFullSizeFurnitureRooms = 26;
+
 /// A cutaway floor plan, as the architectural meshes of issue 12 mix large and small
 /// triangles: rooms x rooms square rooms over [-1,1]^2 with their floors at z = 0 (two
 /// triangles each), no ceilings, walls kInteriorWallHeight high and 0.01 thick as boxes (a
 /// doorway in each inner one), and the rest of the n triangles in furniture on the floors:
 /// boxes (12 triangles, 0.005 to 0.06 wide) and small spheres (80 triangles, radius 0.005 to
-/// 0.03), one in four a sphere. About n triangles (at least the rooms' own); inside
-/// [-1,1]^2 x [0, kInteriorWallHeight].
-constexpr float kInteriorWallHeight = 0.2f;
+/// 0.03), one in four a sphere. With more than kFullSizeFurnitureRooms rooms a side the
+/// furniture shrinks with the rooms, so that it stays inside them. About n triangles (at least
+/// the rooms' own); inside [-1,1]^2 x [0, kInteriorWallHeight].
 TriangleMesh make_interior(size_t n, const CounterRng& rng) {
   constexpr float kHalfThickness = 0.005f;
   constexpr size_t kPropSphereStacks = 5;  // 2 x 10 x 4 = 80 triangles
   const size_t rooms = std::clamp<size_t>(
       static_cast<size_t>(std::llround(std::sqrt(static_cast<double>(n) / 1500.0))), 2, 256);
   const float room = 2.0f / static_cast<float>(rooms);
+  // 1 exactly up to kFullSizeFurnitureRooms (the same bits as unscaled), below 1 beyond.
+  const float scale = std::min(1.0f, float(kFullSizeFurnitureRooms) / float(rooms));
   const TriangleMesh unit_sphere = make_sphere(kPropSphereStacks, 2 * kPropSphereStacks, nullptr);
   const size_t structure = 2 * rooms * rooms + 2 * (rooms + 1) * rooms * 24;
   const size_t capacity = std::max(n, structure) + 2 * unit_sphere.triangles.size();
@@ -298,11 +304,11 @@ TriangleMesh make_interior(size_t n, const CounterRng& rng) {
     if (mesh.triangles.size() + count > n) break;
     const size_t r =
         std::min(rooms * rooms - 1, static_cast<size_t>(rng.unit(k, 1) * rooms * rooms));
-    const float x0 = grid(r % rooms) + 0.035f, y0 = grid(r / rooms) + 0.035f;
-    const float span = room - 0.07f;
+    const float x0 = grid(r % rooms) + 0.035f * scale, y0 = grid(r / rooms) + 0.035f * scale;
+    const float span = room - 0.07f * scale;
     const float cx = x0 + span * rng.unit(k, 2), cy = y0 + span * rng.unit(k, 3);
     if (sphere) {
-      const float radius = rng.uniform(k, 4, 0.005f, 0.03f);
+      const float radius = scale * rng.uniform(k, 4, 0.005f, 0.03f);
       const Vec3 center(cx, cy, radius);
       const size_t base = mesh.positions.size();
       for (const Vec3& p : unit_sphere.positions) mesh.positions.push_back(center + radius * p);
@@ -310,8 +316,9 @@ TriangleMesh make_interior(size_t n, const CounterRng& rng) {
         mesh.triangles.push_back(tri(base + t.x, base + t.y, base + t.z));
       }
     } else {
-      const Vec3 half(rng.uniform(k, 4, 0.0025f, 0.03f), rng.uniform(k, 5, 0.0025f, 0.03f), 0.0f);
-      const float height = rng.uniform(k, 6, 0.005f, 0.12f);
+      const Vec3 half =
+          scale * Vec3(rng.uniform(k, 4, 0.0025f, 0.03f), rng.uniform(k, 5, 0.0025f, 0.03f), 0.0f);
+      const float height = scale * rng.uniform(k, 6, 0.005f, 0.12f);
       add_box(mesh, Vec3(cx, cy, 0.0f) - half, Vec3(cx + half.x, cy + half.y, height));
     }
   }

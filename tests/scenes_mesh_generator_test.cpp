@@ -172,6 +172,10 @@ TEST(ScenesMeshGenerator, InteriorMixesRoomsAndFurniture) {
     EXPECT_GT(largest / smallest, 1e3f) << n;
     EXPECT_GE(floor_triangles, 8u) << n;  // at least 2 x 2 rooms, two triangles each
   }
+  // Rooms smaller than the furniture's full size (37 a side here) keep it inside them.
+  const Bounds3 many_rooms = generate_mesh(GeneratedMeshKind::kInterior, 2000000, 4).bounds();
+  EXPECT_EQ(many_rooms.lower, Vec3(-1.0f, -1.0f, 0.0f));
+  EXPECT_EQ(many_rooms.upper, Vec3(1.0f, 1.0f, 0.2f));
 }
 
 TEST(ScenesMeshGenerator, GridSharesEdgesAndVertices) {
