@@ -15,10 +15,20 @@ struct Ray {
   Vec3 at(float t) const { return origin + t * direction; }
 };
 
-/// How far the wide BVH pads every box, in units of 2^-24 times the larger of the ray origin's and
-/// the scene's largest coordinate magnitude (accel/bvh/wide_kernel_common.h): the slab test then
-/// never rejects a triangle the watertight test would hit. Scene::surface_at() moves the origins
-/// of rays leaving large flat triangles past it where that is cheap (docs/RELIABILITY.md).
-inline constexpr float kBoxPaddingUlps = 32.0f;
+/// The wide BVH's box padding (docs/RELIABILITY.md, "Geometric robustness"): its slab test never
+/// rejects a primitive the watertight triangle test or the sphere test would hit, because every
+/// box is entered wherever the ray passes within, on every axis,
+///     kBoxOriginPaddingUlps u |o| + kBoxCoordinatePaddingUlps u |b| + kBoxSizePaddingUlps u s
+/// of it (u = 2^-24, |.| the largest coordinate magnitude): o is the ray's origin, b the box (the
+/// tests' rounding grows with the vertices' and the origin's coordinates, the slab test's with
+/// the origin's), s the largest extent of a primitive under the box (a triangle's box, a sphere's
+/// diameter; the edge functions' rounding grows with it). The collapse widens each stored box by
+/// its two terms; the per-ray set-up adds the origin's. So a box near the world origin is
+/// padded by its own coordinates and primitives, not by the scene's extent, and
+/// Scene::surface_at() starts a ray leaving an axis-aligned triangle beyond its own flat box's
+/// padding: a ray leaving a floor does not enter the floor's leaf again.
+inline constexpr float kBoxOriginPaddingUlps = 32.0f;
+inline constexpr float kBoxCoordinatePaddingUlps = 16.0f;
+inline constexpr float kBoxSizePaddingUlps = 24.0f;
 
 }  // namespace prism

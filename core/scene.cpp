@@ -20,22 +20,38 @@ const float kSphereTestGamma = rounding_gamma(8);
 // The ends of a shadow ray: the target is rebuilt from a light point, a distance and a
 // direction, with about 9 u of the largest coordinate of either end.
 const float kTargetGamma = rounding_gamma(16);
-// Clearance of the wide BVH's box padding (kBoxPaddingUlps of the larger of |origin| and the
-// scene's scale), with a quarter to spare for the origin's own move and rounding.
-const float kBoxClearanceGamma = rounding_gamma(static_cast<int>(kBoxPaddingUlps * 1.25f));
-// The clearance is at most this many times a triangle test's own error at the point.
-constexpr float kMaxClearanceFactor = 4.0f;
+// The wide BVH's padding of the box of a triangle of size s around a point p (core/ray.h), for a
+// ray from p: kBoxOriginPaddingUlps of |p|, kBoxCoordinatePaddingUlps of the box's coordinates
+// (|p| + s at most for a box holding the triangle alone), kBoxSizePaddingUlps of s, and up to
+// one more ulp of the coordinate from rounding the widened planes outward.
+constexpr float kBoxSizeGap = (kBoxSizePaddingUlps + kBoxCoordinatePaddingUlps) / (1 << 24);
+constexpr float kBoxCoordinateGap =
+    (kBoxOriginPaddingUlps + kBoxCoordinatePaddingUlps + 2.0f) / (1 << 24);
+// A quarter to spare for the origin's own move and rounding.
+constexpr float kBoxGapMargin = 1.25f;
+// Far from the world origin the coordinate's share outgrows small triangles: the offset never
+// grows to more than this fraction of the triangle's size for the clearance.
+constexpr float kMaxGapOfSize = 1.0f / 256.0f;
 
-/// A triangle point's error bound `error` widened, on every axis, toward the wide BVH's box
-/// padding, but to at most kMaxClearanceFactor times `test_error` (the triangle test's share of
-/// the bound): a ray leaving a large flat triangle (a wall, a floor) then starts outside the
-/// padded, flat box of that triangle's leaf instead of inside it, and the BVH does not test that
-/// leaf again for a hit the offset already rules out (docs/RELIABILITY.md, "Geometric
-/// robustness"; docs/PERFORMANCE.md, "Rays leaving large flat triangles"). Small triangles and
-/// points far from the world origin, whose bound the padding dwarfs, keep theirs.
-Vec3 with_box_clearance(const Vec3& p, const Vec3& error, float test_error, float scene_scale) {
-  const float gap = kBoxClearanceGamma * std::max(max_component(glm::abs(p)), scene_scale);
-  return glm::max(error, Vec3(std::min(gap, kMaxClearanceFactor * test_error)));
+/// A triangle point's error bound `error` widened to the wide BVH's padding of the triangle's
+/// own box on the axes where that box is flatter than its padding: a ray leaving a triangle in
+/// an axis-aligned plane (a wall, a floor, a box's face) then starts outside the padded, flat box
+/// of the triangle's leaf instead of inside it, and the BVH does not test that leaf again for a
+/// hit the offset already rules out (docs/RELIABILITY.md, "Geometric robustness";
+/// docs/PERFORMANCE.md, "Rays leaving large flat triangles"). A ray leaving a tilted triangle
+/// starts inside its box whatever the offset, so its bound is left as it is, and so is that of
+/// a triangle so small for its coordinates that the padding exceeds kMaxGapOfSize of its size.
+/// A leaf whose largest triangle is larger than this one is padded more and may still be
+/// entered.
+Vec3 with_box_clearance(const Vec3& p, const Vec3& error, const Vec3& extent) {
+  const float size = max_component(extent);
+  const float gap =
+      kBoxGapMargin * (kBoxSizeGap * size + kBoxCoordinateGap * max_component(glm::abs(p)));
+  Vec3 out = error;
+  for (int a = 0; a < 3; ++a) {
+    if (extent[a] < gap && gap <= kMaxGapOfSize * size) out[a] = std::max(out[a], gap);
+  }
+  return out;
 }
 
 /// The error of a float point rounded once from a double computation on inputs whose
@@ -89,7 +105,7 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
       si.position,
       rebuilt_point_error(si.position, glm::abs(p0) + glm::abs(p1) + glm::abs(p2)) +
           Vec3(test_error),
-      test_error, geometry.coordinate_scale);
+      glm::max(p0, glm::max(p1, p2)) - glm::min(p0, glm::min(p1, p2)));
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float ng_length = glm::length(ng);
   ng = ng_length > 0.0f ? ng / ng_length : -glm::normalize(ray.direction);

@@ -65,11 +65,6 @@ void SceneGeometry::validate() const {
 
 void SceneGeometry::finalize() {
   for (auto& m : meshes) m.finalize();
-  coordinate_scale = 0.0f;
-  if (primitive_count() > 0) {
-    const Bounds3 b = bounds();
-    coordinate_scale = std::max(max_component(glm::abs(b.lower)), max_component(glm::abs(b.upper)));
-  }
 }
 
 }  // namespace prism

@@ -51,12 +51,14 @@ struct SceneGeometry {
   /// Throws Error(kInput) naming the mesh if an invariant above is broken or a coordinate is
   /// not finite.
   void validate() const;
-  /// finalize() on every mesh, and sets coordinate_scale.
+  /// finalize() on every mesh.
   void finalize();
-
-  /// The largest coordinate magnitude of bounds(), as of the last finalize() (0 before):
-  /// the scale of the wide BVH's box padding (kBoxPaddingUlps), for Scene::surface_at().
-  float coordinate_scale = 0.0f;
 };
+
+/// The size the wide BVH pads a triangle's boxes by (kBoxSizePaddingUlps, core/ray.h): the
+/// largest side of the triangle's bounding box.
+inline float triangle_size(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  return max_component(glm::max(p0, glm::max(p1, p2)) - glm::min(p0, glm::min(p1, p2)));
+}
 
 }  // namespace prism

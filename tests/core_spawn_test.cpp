@@ -185,31 +185,47 @@ TEST(CoreSpawn, RebuiltPointsLieWithinTheirErrorBound) {
   }
 }
 
-// The wide BVH pads every box by kBoxPaddingUlps of the larger of |origin| and the scene's
-// largest coordinate. A ray leaving a large flat triangle (a Cornell wall) must start beyond that
-// padding, or the BVH tests the triangle's flat leaf again for a hit the offset already rules out
-// (Scene::surface_at() widens the point's error bound toward it). A small triangle keeps its
-// bound: the widening stops at a few times the triangle test's own error.
-TEST(CoreSpawn, RaysLeavingLargeFlatTrianglesStartBeyondTheBoxPadding) {
+// The wide BVH pads a box by kBoxSizePaddingUlps of its largest primitive's size,
+// kBoxCoordinatePaddingUlps of its largest |coordinate| and kBoxOriginPaddingUlps of the ray
+// origin's (core/ray.h). A ray leaving an axis-aligned triangle (a Cornell wall, a furniture
+// box's face) must start beyond its own flat box's padding, or the BVH tests the triangle's leaf
+// again for a hit the offset already rules out (Scene::surface_at() widens the point's error
+// bound to it). The move stays a few ulps of the coordinates plus a small fraction of the
+// triangle's size.
+TEST(CoreSpawn, RaysLeavingFlatTrianglesStartBeyondTheirBoxPadding) {
   Scene scene = one_triangle_scene({-1, -1, 0}, {1, -1, 0}, {-1, 1, 0});
   TriangleMesh small;
   small.positions = {{0.2f, 0.2f, 0.5f}, {0.201f, 0.2f, 0.5f}, {0.2f, 0.201f, 0.5f}};
   small.triangles = {{0, 1, 2}};
   scene.geometry.meshes.push_back(small);
+  TriangleMesh off_centre;
+  off_centre.positions = {{30.0f, 0.0f, 90.0f}, {31.0f, 0.0f, 90.0f}, {30.0f, 1.0f, 90.0f}};
+  off_centre.triangles = {{0, 1, 2}};
+  scene.geometry.meshes.push_back(off_centre);
   scene.geometry.finalize();
-  ASSERT_FLOAT_EQ(scene.geometry.coordinate_scale, 1.0f);
+  constexpr float kU = 1.0f / (1 << 24);
+  struct Case {
+    uint32_t mesh;
+    float plane, size, coordinate;
+  };
+  const Case cases[] = {{0, 0.0f, 2.0f, 1.0f}, {1, 0.5f, 0.001f, 0.501f}, {2, 90.0f, 1.0f, 90.0f}};
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (int i = 0; i < 1000; ++i) {
     const float u = unit(rng), v = unit(rng) * (1.0f - u);
     const Vec3 away(unit(rng) - 0.5f, unit(rng) - 0.5f, 1.0f);
-    const SurfaceInteraction wall = scene.surface_at(Ray{}, Hit{1.0f, u, v, 0, 0});
-    const Ray up = spawn_ray(wall, away);
-    const float padding =
-        kBoxPaddingUlps / (1 << 24) * std::max(max_component(glm::abs(up.origin)), 1.0f);
-    EXPECT_GT(up.origin.z, padding) << "u " << u << " v " << v;
-    const SurfaceInteraction tiny = scene.surface_at(Ray{}, Hit{1.0f, u, v, 1, 0});
-    EXPECT_LT(spawn_ray(tiny, away).origin.z - 0.5f, 0.5f * padding) << "u " << u << " v " << v;
+    for (const Case& c : cases) {
+      const SurfaceInteraction si = scene.surface_at(Ray{}, Hit{1.0f, u, v, c.mesh, 0});
+      const Ray up = spawn_ray(si, away);
+      const float offset = up.origin.z - c.plane;
+      const float padding =
+          kU * (kBoxSizePaddingUlps * c.size + kBoxCoordinatePaddingUlps * c.coordinate +
+                kBoxOriginPaddingUlps * max_component(glm::abs(up.origin)));
+      // The box's upper plane, widened and rounded up, is at most one more ulp above this.
+      EXPECT_GT(offset, padding + 2.0f * kU * c.plane)
+          << "mesh " << c.mesh << " u " << u << " v " << v;
+      EXPECT_LT(offset, 2.0f * padding) << "mesh " << c.mesh << " u " << u << " v " << v;
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #include "accel/bvh/wide_bvh.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -9,6 +10,17 @@ namespace prism {
 namespace {
 
 float node_area(const BinaryNode& n) { return n.bounds().area(); }
+
+/// `plane` moved outward by `by` (>= 0), rounded outward: toward -inf for a lower plane, +inf
+/// for an upper one. Infinite planes (empty slots) stay as they are.
+float widened_plane(float plane, double by, bool upper) {
+  const double exact = upper ? double(plane) + by : double(plane) - by;
+  float f = static_cast<float>(exact);
+  if (upper ? double(f) < exact : double(f) > exact) {
+    f = std::nextafter(f, upper ? kInfinity : -kInfinity);
+  }
+  return f;
+}
 
 template <int W>
 class Collapser {
@@ -21,14 +33,13 @@ class Collapser {
     if (out_.empty) return;
     const Bounds3 root_bounds = binary_.nodes[0].bounds();
     root_area_ = root_bounds.area();
-    out_.scene_scale = std::max(max_component(glm::abs(root_bounds.lower)),
-                                max_component(glm::abs(root_bounds.upper)));
     out_.nodes.reserve(binary_.node_count / (W - 1) + 1);
     out_.root = collapse(0, 1);
     if (triangle_blocks_ > kLeafFirstMask || sphere_blocks_ > kLeafFirstMask) {
       throw Error(ErrorKind::kResource, "scene too large for the wide BVH's leaf encoding");
     }
     fill_leaves();
+    pad_boxes();
 
     AccelStats& s = out_.stats;
     s.nodes = out_.nodes.size();
@@ -116,6 +127,8 @@ class Collapser {
   void fill_leaves() {
     out_.triangle_blocks.resize(triangle_blocks_);
     out_.sphere_blocks.resize(sphere_blocks_);
+    triangle_leaf_size_.assign(triangle_blocks_, 0.0f);
+    sphere_leaf_size_.assign(sphere_blocks_, 0.0f);
     parallel_for_range(
         jobs_.size(),
         [&](size_t begin, size_t end) {
@@ -139,12 +152,64 @@ class Collapser {
         fill_triangle_block(geometry_, block_refs, n, out_.triangle_blocks[job.first_block + b]);
       }
     }
+    float size = 0.0f;
+    for (int i = 0; i < count; ++i) size = std::max(size, primitive_size(refs[i]));
+    (job.spheres ? sphere_leaf_size_ : triangle_leaf_size_)[job.first_block] = size;
+  }
+
+  /// The largest extent of the whole primitive (not of a spatial split's part of it): its box's
+  /// largest side, a sphere's diameter.
+  float primitive_size(const PrimRef& r) const {
+    if (r.geom_id == geometry_.sphere_geom_id()) return 2.0f * geometry_.spheres[r.prim_id].radius;
+    const TriangleMesh& mesh = geometry_.meshes[r.geom_id];
+    const glm::uvec3 tri = mesh.triangles[r.prim_id];
+    return triangle_size(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]);
+  }
+
+  /// Widens every child box by kBoxSizePaddingUlps ulps of the largest primitive under it and
+  /// kBoxCoordinatePaddingUlps ulps of its largest |coordinate| (core/ray.h): the part of the
+  /// traversal's padding that depends on the box, not on the ray.
+  /// Children come after their parents in `nodes`, so one backward pass sees every child's size
+  /// before its parent's.
+  void pad_boxes() {
+    std::vector<float> node_size(out_.nodes.size(), 0.0f);
+    const double size_unit = double(kBoxSizePaddingUlps) / (1 << 24);
+    const double coordinate_unit = double(kBoxCoordinatePaddingUlps) / (1 << 24);
+    for (size_t index = out_.nodes.size(); index-- > 0;) {
+      WideNode<W>& node = out_.nodes[index];
+      float largest = 0.0f;
+      for (int i = 0; i < W; ++i) {
+        if (!(node.bounds[0][i] <= node.bounds[1][i])) continue;  // empty slot
+        const uint32_t c = node.child[i];
+        float size;
+        if ((c & kLeafFlag) == 0) {
+          size = node_size[c];
+        } else {
+          const uint32_t first = c & kLeafFirstMask;
+          size = (c & kSphereLeafFlag) != 0 ? sphere_leaf_size_[first] : triangle_leaf_size_[first];
+        }
+        largest = std::max(largest, size);
+        double coordinate = 0.0;
+        for (int a = 0; a < 6; ++a)
+          coordinate = std::max(coordinate, double(std::abs(node.bounds[a][i])));
+        const double by = size_unit * size + coordinate_unit * coordinate;
+        for (int a = 0; a < 3; ++a) {
+          node.bounds[2 * a][i] = widened_plane(node.bounds[2 * a][i], by, false);
+          node.bounds[2 * a + 1][i] = widened_plane(node.bounds[2 * a + 1][i], by, true);
+        }
+      }
+      node_size[index] = largest;
+    }
+    triangle_leaf_size_ = {};
+    sphere_leaf_size_ = {};
   }
 
   const BinaryBvh& binary_;
   const SceneGeometry& geometry_;
   WideBvh<W>& out_;
   std::vector<LeafJob> jobs_;
+  /// The largest primitive size of each leaf, by the leaf's first block (fill_leaf()).
+  std::vector<float> triangle_leaf_size_, sphere_leaf_size_;
   uint32_t triangle_blocks_ = 0;
   uint32_t sphere_blocks_ = 0;
   size_t leaves_ = 0;

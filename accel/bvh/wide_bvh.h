@@ -14,18 +14,19 @@
 
 namespace prism {
 
-/// A binary tree collapsed into W-wide nodes, with the leaf primitives copied into blocks. The
-/// nodes and triangle blocks of a big tree lie in transparent huge pages: incoherent rays
-/// through a tree larger than the caches miss the TLB at almost every node with 4 KiB pages.
+/// A binary tree collapsed into W-wide nodes, with the leaf primitives copied into blocks. Each
+/// child box is stored widened by kBoxSizePaddingUlps ulps of the largest primitive under it
+/// (core/ray.h), the box's share of the traversal's padding. The nodes and triangle blocks of a big
+/// tree lie in transparent huge pages: incoherent rays through a tree larger than the caches miss
+/// the TLB at almost every node with 4 KiB pages.
 template <int W>
 struct WideBvh {
   std::vector<WideNode<W>, HugePageAllocator<WideNode<W>>> nodes;
   std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> triangle_blocks;
   std::vector<SphereBlock> sphere_blocks;
-  uint32_t root = 0;         ///< a node index or a leaf reference
-  bool empty = true;         ///< no primitives: every query misses
-  float scene_scale = 0.0f;  ///< largest |coordinate| of the bounds (for the traversal's padding)
-  AccelStats stats;  ///< nodes, leaves, depth, bytes, SAH cost (build_ms: Accelerator::stats())
+  uint32_t root = 0;  ///< a node index or a leaf reference
+  bool empty = true;  ///< no primitives: every query misses
+  AccelStats stats;   ///< nodes, leaves, depth, bytes, SAH cost (build_ms: Accelerator::stats())
 };
 
 /// Collapses `binary` (built over `geometry`) into a W-wide tree: each wide node adopts the

@@ -137,7 +137,6 @@ void WideBvhAccelerator::build_structure(const SceneGeometry& geometry) {
           view_.spheres = geometry.spheres.data();
           view_.sphere_geom_id = geometry.sphere_geom_id();
           view_.root = bvh.root;
-          view_.scene_scale = bvh.scene_scale;
           empty_ = bvh.empty;
         }
       },

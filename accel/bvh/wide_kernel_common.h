@@ -14,17 +14,14 @@ PRISM_KERNEL_INLINE bool comes_before_hit(float t, uint32_t geom_id, uint32_t pr
 
 PRISM_KERNEL_INLINE int lowest_lane(uint32_t mask) { return __builtin_ctz(mask); }
 
-// Box padding in units of the larger of |origin| and the scene's extent. The watertight test
-// works on vertices translated to the ray origin, so its rounding moves a hit by a few ulps of
-// that magnitude; the slab test's own rounding is of the same order. 32 ulps (kBoxPaddingUlps,
-// core/ray.h) covers both with room to spare.
-inline constexpr float kPaddingUlps = kBoxPaddingUlps / (1 << 24);
+// The ray's share of the box padding (core/ray.h), per unit of the origin's largest |coordinate|;
+// the boxes' share is in their stored planes.
+inline constexpr float kOriginPadding = kBoxOriginPaddingUlps / (1 << 24);
 // Direction components below this count as this (with their sign), so that 1 / d is finite
 // and plane * (1 / d) has no 0 * inf.
 inline constexpr float kMinDirection = 1e-18f;
 
-/// Per-ray constants of one query, filled by each instruction set's setup_ray(ray, scene_scale,
-/// setup).
+/// Per-ray constants of one query, filled by each instruction set's setup_ray(ray, setup).
 struct RaySetup {
   float org[3];
   float tmin, tmax;

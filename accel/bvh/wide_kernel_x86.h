@@ -28,7 +28,7 @@ inline constexpr WatertightAxes kWatertightAxes = make_watertight_axes();
 /// The per-ray constants, four lanes at a time. The watertight test's axes and shear are
 /// computed exactly as WatertightRay does (same comparisons, the same division 1 / d[kz], same
 /// products), without a branch. The box test's reciprocals do not wait for the axes.
-PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& s) {
+PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, RaySetup& s) {
   // Ray is {origin, tmin, direction, tmax}: two unaligned loads fetch it all.
   const __m128 o = _mm_loadu_ps(&ray.origin.x);
   const __m128 d = _mm_loadu_ps(&ray.direction.x);
@@ -67,9 +67,8 @@ PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& 
   const __m128 abs_o = _mm_andnot_ps(sign, o);
   __m128 scale = _mm_max_ps(abs_o, _mm_shuffle_ps(abs_o, abs_o, _MM_SHUFFLE(3, 0, 2, 1)));
   scale = _mm_max_ps(scale, _mm_shuffle_ps(abs_o, abs_o, _MM_SHUFFLE(3, 1, 0, 2)));
-  scale = _mm_max_ps(scale, _mm_set1_ps(scene_scale));
   const __m128 pad =
-      _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(kPaddingUlps), scale), _mm_andnot_ps(sign, inv));
+      _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(kOriginPadding), scale), _mm_andnot_ps(sign, inv));
   const __m128 base = _mm_mul_ps(_mm_xor_ps(o, sign), inv);
   alignas(16) float org[4], near_offset[4], far_offset[4];
   _mm_store_ps(org, o);

@@ -29,10 +29,6 @@ struct WideBvhView {
   const Sphere* spheres;
   uint32_t sphere_geom_id;
   uint32_t root;
-  /// Largest |coordinate| of the tree's bounds. Boxes are padded by a few ulps of the larger of
-  /// it and the ray origin's largest |coordinate|, so that no box test rejects a primitive the
-  /// watertight test would hit (its rounding scales the same way).
-  float scene_scale;
 };
 
 /// A kernel: the closest hit (replacing `hit`, which starts as kNoWideHit) or any hit of a ray

@@ -13,7 +13,7 @@ namespace wide_generic {
 #include "accel/bvh/wide_kernel_common.h"
 
 /// The per-ray constants in plain scalar code.
-PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& s) {
+PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, RaySetup& s) {
   const float d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
   const float o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
   s.tmin = ray.tmin;
@@ -31,12 +31,12 @@ PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, float scene_scale, RaySetup& 
   s.shear_x = -d[s.kx] * s.shear_z;
   s.shear_y = -d[s.ky] * s.shear_z;
 
-  float scale = scene_scale;
+  float scale = 0.0f;
   for (int a = 0; a < 3; ++a) {
     s.org[a] = o[a];
     scale = __builtin_fabsf(o[a]) > scale ? __builtin_fabsf(o[a]) : scale;
   }
-  const float delta = kPaddingUlps * scale;
+  const float delta = kOriginPadding * scale;
   s.octant = 0;
   for (int a = 0; a < 3; ++a) {
     const float da = ad[a] < kMinDirection
