@@ -329,6 +329,82 @@ TEST(AccelWideBvh, BuildersProduceValidTrees) {
   }
 }
 
+// The primitives under one child of a wide tree: their box, their largest size (a triangle's
+// box's largest side, a sphere's diameter) and their largest |coordinate|.
+struct SubtreeExtent {
+  Bounds3 box;
+  double size = 0.0;
+};
+
+template <int W>
+void add_subtree(const WideBvh<W>& bvh, const SceneGeometry& g, uint32_t ref, SubtreeExtent& out) {
+  if ((ref & kLeafFlag) == 0) {
+    const WideNode<W>& node = bvh.nodes[ref];
+    for (int i = 0; i < W; ++i) {
+      if (node.bounds[0][i] <= node.bounds[1][i]) add_subtree(bvh, g, node.child[i], out);
+    }
+    return;
+  }
+  const uint32_t first = ref & kLeafFirstMask;
+  const uint32_t blocks = ((ref >> kLeafCountShift) & 15u) + 1;
+  for (uint32_t b = first; b < first + blocks; ++b) {
+    for (int lane = 0; lane < 4; ++lane) {
+      if ((ref & kSphereLeafFlag) != 0) {
+        const Sphere& sp = g.spheres[bvh.sphere_blocks[b].sphere[lane]];
+        out.box.extend(sp.bounds());
+        out.size = std::max(out.size, 2.0 * sp.radius);
+        continue;
+      }
+      const TriangleBlock& block = bvh.triangle_blocks[b];
+      Vec3 v[3];
+      for (int k = 0; k < 3; ++k) {
+        v[k] = Vec3(block.p[k][0][lane], block.p[k][1][lane], block.p[k][2][lane]);
+        out.box.extend(v[k]);
+      }
+      out.size = std::max(out.size, double(triangle_size(v[0], v[1], v[2])));
+    }
+  }
+}
+
+// The traversal's padding (core/ray.h) has a share that depends on the box alone: every stored
+// child box must hold its primitives widened by kBoxCoordinatePaddingUlps of their largest
+// |coordinate| and kBoxSizePaddingUlps of their largest size, on every axis; the kernels add
+// only the ray origin's share.
+template <int W>
+void check_box_padding(const WideBvh<W>& bvh, const SceneGeometry& g) {
+  constexpr double kU = 1.0 / (1 << 24);
+  size_t checked = 0;
+  for (const WideNode<W>& node : bvh.nodes) {
+    for (int i = 0; i < W; ++i) {
+      if (!(node.bounds[0][i] <= node.bounds[1][i])) continue;
+      SubtreeExtent e;
+      add_subtree(bvh, g, node.child[i], e);
+      const double coordinate =
+          std::max(max_component(glm::abs(e.box.lower)), max_component(glm::abs(e.box.upper)));
+      const double padding =
+          kBoxCoordinatePaddingUlps * kU * coordinate + kBoxSizePaddingUlps * kU * e.size;
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_LE(double(node.bounds[2 * a][i]), double(e.box.lower[a]) - padding) << "axis " << a;
+        ASSERT_GE(double(node.bounds[2 * a + 1][i]), double(e.box.upper[a]) + padding)
+            << "axis " << a;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0u);
+}
+
+TEST(AccelWideBvh, StoredBoxesCarryTheirShareOfThePadding) {
+  for (const NamedScene& scene : make_scenes()) {
+    SCOPED_TRACE(scene.name);
+    const BinaryBvh binary =
+        build_object_split_bvh(make_prim_refs(scene.geometry), scene.geometry.sphere_geom_id(), {});
+    check_box_padding(collapse_to_wide<8>(binary, scene.geometry), scene.geometry);
+    check_box_padding(collapse_to_wide<4>(binary, scene.geometry), scene.geometry);
+    check_box_padding(collapse_to_wide<2>(binary, scene.geometry), scene.geometry);
+  }
+}
+
 double interior_area(const BinaryBvh& bvh) {
   double sum = 0.0;
   for (size_t i = 0; i < bvh.node_count; ++i) {
