@@ -15,8 +15,9 @@
 namespace prism {
 
 /// A binary tree collapsed into W-wide nodes, with the leaf primitives copied into blocks. Each
-/// child box is stored widened by kBoxSizePaddingUlps ulps of the largest primitive under it
-/// (core/ray.h), the box's share of the traversal's padding. The nodes and triangle blocks of a big
+/// child box is stored widened by the box's share of the traversal's padding (core/ray.h):
+/// kBoxCoordinatePaddingUlps ulps of its largest |coordinate| and kBoxSizePaddingUlps ulps of the
+/// largest primitive under it. The nodes and triangle blocks of a big
 /// tree lie in transparent huge pages: incoherent rays through a tree larger than the caches miss
 /// the TLB at almost every node with 4 KiB pages.
 template <int W>
