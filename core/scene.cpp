@@ -105,7 +105,7 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
       si.position,
       rebuilt_point_error(si.position, glm::abs(p0) + glm::abs(p1) + glm::abs(p2)) +
           Vec3(test_error),
-      glm::max(p0, glm::max(p1, p2)) - glm::min(p0, glm::min(p1, p2)));
+      triangle_extent(p0, p1, p2));
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float ng_length = glm::length(ng);
   ng = ng_length > 0.0f ? ng / ng_length : -glm::normalize(ray.direction);

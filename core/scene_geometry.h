@@ -55,10 +55,15 @@ struct SceneGeometry {
   void finalize();
 };
 
+/// The sides of the triangle's bounding box.
+inline Vec3 triangle_extent(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  return glm::max(p0, glm::max(p1, p2)) - glm::min(p0, glm::min(p1, p2));
+}
+
 /// The size the wide BVH pads a triangle's boxes by (kBoxSizePaddingUlps, core/ray.h): the
 /// largest side of the triangle's bounding box.
 inline float triangle_size(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
-  return max_component(glm::max(p0, glm::max(p1, p2)) - glm::min(p0, glm::min(p1, p2)));
+  return max_component(triangle_extent(p0, p1, p2));
 }
 
 }  // namespace prism
