@@ -59,9 +59,10 @@ std::optional<PrimitiveHit> sheared_triangle_hit(const WatertightRay& ray,
   if (det == 0.0) return std::nullopt;
   const double t_scaled =
       (e0 * double(s.az) + e1 * double(s.bz) + e2 * double(s.cz)) * double(ray.shear_z);
-  const float t = static_cast<float>(t_scaled / det);
+  const double inv_det = 1.0 / det;
+  const float t = static_cast<float>(t_scaled * inv_det);
   if (!(t >= ray.tmin && t <= ray.tmax)) return std::nullopt;
-  return PrimitiveHit{t, static_cast<float>(e1 / det), static_cast<float>(e2 / det)};
+  return PrimitiveHit{t, static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det)};
 }
 
 std::optional<PrimitiveHit> triangle_hit_parameters(const WatertightRay& ray, const Vec3& p0,

@@ -304,10 +304,11 @@ PRISM_KERNEL_INLINE int double_hit_parameters4(const float* s, int stride, float
       _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(e0, az), _mm256_mul_pd(e1, bz)),
                                   _mm256_mul_pd(e2, cz)),
                     _mm256_set1_pd(static_cast<double>(shear_z)));
-  const __m128 tf = _mm256_cvtpd_ps(_mm256_div_pd(t_scaled, det));
+  const __m256d inv_det = _mm256_div_pd(_mm256_set1_pd(1.0), det);
+  const __m128 tf = _mm256_cvtpd_ps(_mm256_mul_pd(t_scaled, inv_det));
   _mm_store_ps(t, tf);
-  _mm_store_ps(u, _mm256_cvtpd_ps(_mm256_div_pd(e1, det)));
-  _mm_store_ps(v, _mm256_cvtpd_ps(_mm256_div_pd(e2, det)));
+  _mm_store_ps(u, _mm256_cvtpd_ps(_mm256_mul_pd(e1, inv_det)));
+  _mm_store_ps(v, _mm256_cvtpd_ps(_mm256_mul_pd(e2, inv_det)));
   const int nonzero = _mm256_movemask_pd(_mm256_cmp_pd(det, _mm256_setzero_pd(), _CMP_NEQ_OQ));
   const __m128 in_range = _mm_and_ps(_mm_cmp_ps(tf, _mm_set1_ps(tmin), _CMP_GE_OQ),
                                      _mm_cmp_ps(tf, _mm_set1_ps(tmax), _CMP_LE_OQ));
