@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "accel/bench/bench_runner.h"
+#include "core/app/host_check.h"
 #include "core/app/render_options.h"
 #include "core/error.h"
 #include "scenes/generated_scene.h"
@@ -131,6 +132,21 @@ void print_summary(const std::vector<BenchRow>& rows, const std::vector<int>& th
   }
 }
 
+/// Times every CPU's add chain (host_check.h) and logs it; returns whether some CPU was slow.
+bool check_host(const char* when) {
+  const std::vector<CpuSpeed> speeds = measure_cpu_speeds();
+  if (speeds.empty()) return false;
+  std::string line;
+  for (const CpuSpeed& s : speeds) {
+    line += fmt::format("{}cpu{} {:.2f}", line.empty() ? "" : ", ", s.cpu, s.gadds_per_s);
+  }
+  std::fprintf(stderr, "bench: host check %s: %s G adds/s\n", when, line.c_str());
+  const std::string slow = describe_slow_cpus(speeds);
+  if (slow.empty()) return false;
+  std::fprintf(stderr, "bench: warning: %s\n", slow.c_str());
+  return true;
+}
+
 }  // namespace
 
 std::vector<std::string> standard_bench_scenes(bool quick) {
@@ -176,6 +192,7 @@ int run_bench_command(const BenchOptions& options) {
   settings.passes = options.passes;
 
   std::vector<BenchRow> rows;
+  int checks = 0, slow_checks = 0;
   for (const std::string& spec : specs) {
     std::string name;
     const Scene scene = load_scene_or_generated(spec, name);
@@ -198,13 +215,23 @@ int run_bench_command(const BenchOptions& options) {
                  scene.geometry.triangle_count(),
                  stride > 1 ? fmt::format(", one ray in {} (slow scene)", stride).c_str() : "");
     settings.build_repeats = scene.geometry.triangle_count() < 1000000 ? 3 : 1;
+    ++checks;
+    if (check_host(("before " + name).c_str())) ++slow_checks;
     const std::vector<BenchRow> scene_rows = bench_scene(
         name, scene.geometry, backends, sets, settings,
         [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); });
     rows.insert(rows.end(), scene_rows.begin(), scene_rows.end());
     write_json(json_path, rows);
   }
+  ++checks;
+  if (check_host("at the end")) ++slow_checks;
   print_summary(rows, options.threads);
+  if (slow_checks > 0) {
+    fmt::print(
+        "host check: some CPU ran at under 0.8 of the fastest in {} of {} checks (bench's "
+        "stderr): another workload shared its core, and the ratios above may be off\n",
+        slow_checks, checks);
+  }
   fmt::print("wrote {} rows to {}\n", rows.size(), json_path.string());
   return kExitSuccess;
 }
