@@ -187,7 +187,7 @@ PRISM_KERNEL_INLINE bool dispatch_octant(unsigned octant, Visit&& visit) {
 template <int W>
 bool intersect_closest(const WideBvhView& bvh, const Ray& ray, WideHit& hit) {
   RaySetup s;
-  setup_ray(ray, s);
+  setup_ray<W>(ray, s);
   return dispatch_octant(s.octant, [&](auto octant) {
     return intersect_closest_octant<W, decltype(octant)::value>(bvh, s, ray, hit);
   });
@@ -196,7 +196,7 @@ bool intersect_closest(const WideBvhView& bvh, const Ray& ray, WideHit& hit) {
 template <int W>
 bool intersect_any(const WideBvhView& bvh, const Ray& ray) {
   RaySetup s;
-  setup_ray(ray, s);
+  setup_ray<W>(ray, s);
   return dispatch_octant(s.octant, [&](auto octant) {
     return intersect_any_octant<W, decltype(octant)::value>(bvh, s, ray);
   });

@@ -21,19 +21,31 @@ inline constexpr float kOriginPadding = kBoxOriginPaddingUlps / (1 << 24);
 // and plane * (1 / d) has no 0 * inf.
 inline constexpr float kMinDirection = 1e-18f;
 
-/// Per-ray constants of one query, filled by each instruction set's setup_ray(ray, setup).
+/// Per-ray constants of one query, filled by each instruction set's setup_ray<W>(ray, setup).
+/// The arrays of three have a fourth, unused entry, so that setup_ray<W>() on x86 stores each as
+/// one vector of its own.
 struct RaySetup {
   float org[3];
-  float tmin, tmax;
+  float tmin;  ///< follows org: the x86 set-up stores a Ray's origin and tmin as one vector
+  float tmax;
   /// Slab test: plane * inv[a] + near_offset[a] (far_offset[a]) is the padded entry (exit)
   /// distance of the near (far) plane on axis a.
-  float inv[3], near_offset[3], far_offset[3];
+  float inv[4], near_offset[4], far_offset[4];
   /// Bit a is set when the direction is negative on axis a: the near plane is then the upper.
   unsigned octant;
   /// The watertight test's axes and shear, computed exactly as WatertightRay does.
-  int kx, ky, kz;
-  float shear_x, shear_y, shear_z;
+  int kx, ky, kz, unused_k;
+  float shear_x, shear_y, shear_z, unused_shear;
+  /// The x86 kernels': where the rows of WideNode<W>::bounds holding the near and far planes on
+  /// each axis start, in floats from its first.
+  uint32_t near_index[4], far_index[4];
 };
+/// setup_ray<W>() on x86 stores kx to unused_k and shear_x to unused_shear as one vector each.
+inline constexpr bool kRaySetupTakesVectorStores =
+    offsetof(RaySetup, tmin) == offsetof(RaySetup, org) + 3 * sizeof(float) &&
+    offsetof(RaySetup, unused_k) == offsetof(RaySetup, kx) + 3 * sizeof(int) &&
+    offsetof(RaySetup, unused_shear) == offsetof(RaySetup, shear_x) + 3 * sizeof(float);
+static_assert(kRaySetupTakesVectorStores);
 
 // Each level pushes at most W - 1 siblings and the builders bound the depth.
 template <int W>

@@ -28,8 +28,11 @@ inline constexpr WatertightAxes kWatertightAxes = make_watertight_axes();
 /// The per-ray constants, four lanes at a time. The watertight test's axes and shear are
 /// computed exactly as WatertightRay does (same comparisons, the same division 1 / d[kz], same
 /// products), without a branch. The box test's reciprocals do not wait for the axes.
+template <int W>
 PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, RaySetup& s) {
   // Ray is {origin, tmin, direction, tmax}: two unaligned loads fetch it all.
+  static_assert(offsetof(Ray, tmin) == offsetof(Ray, origin) + 3 * sizeof(float) &&
+                offsetof(Ray, tmax) == offsetof(Ray, direction) + 3 * sizeof(float));
   const __m128 o = _mm_loadu_ps(&ray.origin.x);
   const __m128 d = _mm_loadu_ps(&ray.direction.x);
   const __m128 sign = _mm_set1_ps(-0.0f);
@@ -41,28 +44,17 @@ PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, RaySetup& s) {
   const __m128 inv = _mm_div_ps(one, dd);  // lane 3: 1 / tmax, unused
   // 1 / d without the tiny components replaced: lane kz is WatertightRay's shear_z.
   const __m128 inv_d = _mm_div_ps(one, d);
-  s.tmin = ray.tmin;
-  s.tmax = ray.tmax;
   const __m128 x_ge = _mm_cmpge_ps(abs_d, _mm_shuffle_ps(abs_d, abs_d, _MM_SHUFFLE(3, 0, 2, 1)));
   const __m128 x_ge_z = _mm_cmpge_ps(abs_d, _mm_shuffle_ps(abs_d, abs_d, _MM_SHUFFLE(3, 1, 0, 2)));
   const int index = (_mm_movemask_ps(x_ge) & 3) | ((_mm_movemask_ps(x_ge_z) & 1) << 3) |
                     ((_mm_movemask_ps(_mm_cmplt_ps(d, _mm_setzero_ps())) & 7) << 6);
   const unsigned axes = kWatertightAxes.packed[index];
-  s.kx = static_cast<int>(axes & 3u);
-  s.ky = static_cast<int>((axes >> 2) & 3u);
-  s.kz = static_cast<int>(axes >> 4);
   // Lanes kx, ky, kz of d and of 1 / d: shear_x = -d[kx] * shear_z, shear_y likewise.
   const __m128i lanes =
       _mm_srlv_epi32(_mm_set1_epi32(static_cast<int>(axes)), _mm_setr_epi32(0, 2, 4, 4));
   const __m128 inv_k = _mm_permutevar_ps(inv_d, lanes);
   const __m128 shear_z = _mm_shuffle_ps(inv_k, inv_k, _MM_SHUFFLE(2, 2, 2, 2));
   const __m128 shear = _mm_mul_ps(_mm_xor_ps(_mm_permutevar_ps(d, lanes), sign), shear_z);
-  alignas(16) float shear_v[4], iv[4];
-  _mm_store_ps(shear_v, shear);
-  s.shear_x = shear_v[0];
-  s.shear_y = shear_v[1];
-  s.shear_z = _mm_cvtss_f32(shear_z);
-  _mm_store_ps(iv, inv);
 
   const __m128 abs_o = _mm_andnot_ps(sign, o);
   __m128 scale = _mm_max_ps(abs_o, _mm_shuffle_ps(abs_o, abs_o, _MM_SHUFFLE(3, 0, 2, 1)));
@@ -70,48 +62,51 @@ PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, RaySetup& s) {
   const __m128 pad =
       _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(kOriginPadding), scale), _mm_andnot_ps(sign, inv));
   const __m128 base = _mm_mul_ps(_mm_xor_ps(o, sign), inv);
-  alignas(16) float org[4], near_offset[4], far_offset[4];
-  _mm_store_ps(org, o);
-  _mm_store_ps(near_offset, _mm_sub_ps(base, pad));
-  _mm_store_ps(far_offset, _mm_add_ps(base, pad));
-  for (int a = 0; a < 3; ++a) {
-    s.org[a] = org[a];
-    s.inv[a] = iv[a];
-    s.near_offset[a] = near_offset[a];
-    s.far_offset[a] = far_offset[a];
-  }
+  // Whole vectors, one per field (kRaySetupTakesVectorStores).
+  _mm_storeu_ps(s.org, o);  // org, and tmin: the Ray's tmin follows its origin
+  s.tmax = ray.tmax;
+  _mm_storeu_ps(s.inv, inv);
+  _mm_storeu_ps(s.near_offset, _mm_sub_ps(base, pad));
+  _mm_storeu_ps(s.far_offset, _mm_add_ps(base, pad));
   s.octant = static_cast<unsigned>(_mm_movemask_ps(inv)) & 7u;
-}
-
-/// The row of WideNode::bounds holding the near planes on `axis` for a ray of `octant`: the
-/// upper (2 axis + 1) when the direction is negative on that axis; the far row is the other one.
-PRISM_KERNEL_INLINE int near_row(unsigned octant, int axis) {
-  return 2 * axis + static_cast<int>((octant >> axis) & 1u);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(&s.kx), _mm_and_si128(lanes, _mm_set1_epi32(3)));
+  _mm_storeu_ps(&s.shear_x, _mm_blend_ps(shear, shear_z, 0b0100));  // shear_x, shear_y, shear_z
+  // The rows of WideNode<W>::bounds holding the near planes (2 axis, + 1 where the direction is
+  // negative) and the far planes (the other one), as offsets in floats: an index the box test's
+  // loads scale by themselves.
+  constexpr int kRowShift = W == 8 ? 3 : (W == 4 ? 2 : 1);
+  static_assert(W == 1 << kRowShift);
+  const __m128i near =
+      _mm_add_epi32(_mm_setr_epi32(0, 2, 4, 6), _mm_srli_epi32(_mm_castps_si128(inv), 31));
+  const __m128i far = _mm_xor_si128(near, _mm_set1_epi32(1));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(s.near_index), _mm_slli_epi32(near, kRowShift));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(s.far_index), _mm_slli_epi32(far, kRowShift));
 }
 
 /// The box test's per-ray constants, for every width: the RaySetup, whose scalars the box test
-/// broadcasts where it uses them (an FMA's broadcast operand, or one load), and the rows of the
-/// near and far planes of each axis (by the ray's octant). kOctant is always kRuntimeOctant here
-/// (see below). The closest-hit loop calls its leaves out of line, which clobbers every vector
-/// register, so the loop reloaded the constants from the stack at each node anyway; broadcasting
-/// them once per ray only added ten vector stores per ray (docs/PERFORMANCE.md, "The per-ray
-/// set-up").
+/// broadcasts where it uses them (an FMA's broadcast operand, or one load), including where the
+/// rows of the near and far planes of each axis start (by the ray's octant). kOctant is always
+/// kRuntimeOctant here (see below). The closest-hit loop calls its leaves out of line, which
+/// clobbers every vector register, so the loop reloaded the constants from the stack at each node
+/// anyway; broadcasting them once per ray only added ten vector stores per ray
+/// (docs/PERFORMANCE.md, "The per-ray set-up").
 template <int W, unsigned kOctant>
 struct NodeRay {
-  explicit NodeRay(const RaySetup& s) : setup(s) {
-    for (int a = 0; a < 3; ++a) {
-      near_plane[a] = near_row(s.octant, a);
-      far_plane[a] = near_plane[a] ^ 1;
-    }
+  explicit NodeRay(const RaySetup& s) : setup(s) {}
+  /// The near (far) planes of `node` on `axis`: a row of WideNode::bounds (setup_ray<W>()).
+  const float* near_planes(const WideNode<W>& node, int axis) const {
+    return &node.bounds[0][0] + setup.near_index[axis];
+  }
+  const float* far_planes(const WideNode<W>& node, int axis) const {
+    return &node.bounds[0][0] + setup.far_index[axis];
   }
   const RaySetup& setup;
-  int near_plane[3], far_plane[3];  ///< WideNode::bounds rows of the near and far planes
 };
 
-/// The x86 kernels take the ray's octant at run time: the near and far rows come from the
-/// NodeRay (an indexed load costs nothing), and one instantiation of the traversal serves every
-/// ray. Measured against one instantiation per octant (a switch on the octant per ray): 5% more
-/// rays per second on incoherent rays, whose octants the branch predictor cannot guess.
+/// The x86 kernels take the ray's octant at run time: where the near and far rows start comes
+/// from the RaySetup (an indexed load costs nothing), and one instantiation of the traversal serves
+/// every ray. Measured against one instantiation per octant (a switch on the octant per ray): 5%
+/// more rays per second on incoherent rays, whose octants the branch predictor cannot guess.
 inline constexpr unsigned kRuntimeOctant = 8;
 inline constexpr bool kKernelUsesRuntimeOctant = true;
 
@@ -125,9 +120,9 @@ PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<8>& node, const NodeR
   __m256 tf = _mm256_set1_ps(tmax);
   for (int a = 0; a < 3; ++a) {
     const __m256 inv = _mm256_broadcast_ss(&s.inv[a]);
-    const __m256 n = _mm256_fmadd_ps(_mm256_load_ps(node.bounds[ray.near_plane[a]]), inv,
+    const __m256 n = _mm256_fmadd_ps(_mm256_load_ps(ray.near_planes(node, a)), inv,
                                      _mm256_broadcast_ss(&s.near_offset[a]));
-    const __m256 f = _mm256_fmadd_ps(_mm256_load_ps(node.bounds[ray.far_plane[a]]), inv,
+    const __m256 f = _mm256_fmadd_ps(_mm256_load_ps(ray.far_planes(node, a)), inv,
                                      _mm256_broadcast_ss(&s.far_offset[a]));
     tn = _mm256_max_ps(n, tn);
     tf = _mm256_min_ps(f, tf);
@@ -148,10 +143,10 @@ PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<4>& node, const NodeR
   __m128 tf = _mm_set1_ps(tmax);
   for (int a = 0; a < 3; ++a) {
     const __m128 inv = _mm_broadcast_ss(&s.inv[a]);
-    const __m128 n = _mm_fmadd_ps(_mm_load_ps(node.bounds[ray.near_plane[a]]), inv,
+    const __m128 n = _mm_fmadd_ps(_mm_load_ps(ray.near_planes(node, a)), inv,
                                   _mm_broadcast_ss(&s.near_offset[a]));
-    const __m128 f = _mm_fmadd_ps(_mm_load_ps(node.bounds[ray.far_plane[a]]), inv,
-                                  _mm_broadcast_ss(&s.far_offset[a]));
+    const __m128 f =
+        _mm_fmadd_ps(_mm_load_ps(ray.far_planes(node, a)), inv, _mm_broadcast_ss(&s.far_offset[a]));
     tn = _mm_max_ps(n, tn);
     tf = _mm_min_ps(f, tf);
   }
@@ -175,10 +170,10 @@ PRISM_KERNEL_INLINE uint32_t intersect_node(const WideNode<2>& node, const NodeR
   __m128 tf = _mm_set1_ps(tmax);
   for (int a = 0; a < 3; ++a) {
     const __m128 inv = _mm_broadcast_ss(&s.inv[a]);
-    const __m128 n = _mm_fmadd_ps(load2(node.bounds[ray.near_plane[a]]), inv,
-                                  _mm_broadcast_ss(&s.near_offset[a]));
+    const __m128 n =
+        _mm_fmadd_ps(load2(ray.near_planes(node, a)), inv, _mm_broadcast_ss(&s.near_offset[a]));
     const __m128 f =
-        _mm_fmadd_ps(load2(node.bounds[ray.far_plane[a]]), inv, _mm_broadcast_ss(&s.far_offset[a]));
+        _mm_fmadd_ps(load2(ray.far_planes(node, a)), inv, _mm_broadcast_ss(&s.far_offset[a]));
     tn = _mm_max_ps(n, tn);
     tf = _mm_min_ps(f, tf);
   }

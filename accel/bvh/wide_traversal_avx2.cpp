@@ -4,6 +4,7 @@
 
 #include <immintrin.h>
 
+#include <cstddef>  // offsetof, for wide_kernel_common.h
 #include <utility>  // std::integer_sequence, for wide_kernel_body.h
 
 #include "accel/bvh/build_reference.h"

@@ -1,6 +1,7 @@
 // The wide BVH's portable traversal kernels (baseline x86-64, every width): the fallback on
 // CPUs without AVX2 and the only kernels for the binary layout.
 
+#include <cstddef>  // offsetof, for wide_kernel_common.h
 #include <utility>  // std::integer_sequence, for wide_kernel_body.h
 
 #include "accel/bvh/build_reference.h"
@@ -12,7 +13,8 @@ namespace wide_generic {
 
 #include "accel/bvh/wide_kernel_common.h"
 
-/// The per-ray constants in plain scalar code.
+/// The per-ray constants in plain scalar code (the same for every width W).
+template <int W>
 PRISM_KERNEL_INLINE void setup_ray(const Ray& ray, RaySetup& s) {
   const float d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
   const float o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
