@@ -16,7 +16,7 @@ struct CpuSpeed {
 /// whose other hardware thread is busy, here or in another virtual machine on the same host,
 /// runs it at about half (the two threads take the front end in turns), while its vector units'
 /// throughput barely changes. Such a core runs the BVH's kernels about a third slower and
-/// Embree's less (docs/PERFORMANCE.md, "The host's slow phases are one CPU's"). Empty where the
+/// Embree's less (docs/PERFORMANCE.md, "2026-12-06, sixth session"). Empty where the
 /// CPU set or the pinning is not available, or off x86-64.
 std::vector<CpuSpeed> measure_cpu_speeds();
 
