@@ -27,6 +27,11 @@ TEST(AppHostCheck, TimesEveryCpuTheProcessMayUse) {
   }
 }
 
+TEST(AppHostCheck, FormatsEveryCpuOnOneLine) {
+  EXPECT_EQ(format_cpu_speeds({{0, 3.456}, {3, 1.9}}), "cpu0 3.46, cpu3 1.90");
+  EXPECT_EQ(format_cpu_speeds({}), "");
+}
+
 TEST(AppHostCheck, NamesOnlyTheCpusWellBelowTheFastest) {
   EXPECT_EQ(describe_slow_cpus({{0, 3.5}, {1, 3.4}}), "");
   EXPECT_EQ(describe_slow_cpus({{0, 1.9}}), "");  // nothing to compare with

@@ -136,11 +136,8 @@ void print_summary(const std::vector<BenchRow>& rows, const std::vector<int>& th
 bool check_host(const char* when) {
   const std::vector<CpuSpeed> speeds = measure_cpu_speeds();
   if (speeds.empty()) return false;
-  std::string line;
-  for (const CpuSpeed& s : speeds) {
-    line += fmt::format("{}cpu{} {:.2f}", line.empty() ? "" : ", ", s.cpu, s.gadds_per_s);
-  }
-  std::fprintf(stderr, "bench: host check %s: %s G adds/s\n", when, line.c_str());
+  std::fprintf(stderr, "bench: host check %s: %s G adds/s\n", when,
+               format_cpu_speeds(speeds).c_str());
   const std::string slow = describe_slow_cpus(speeds);
   if (slow.empty()) return false;
   std::fprintf(stderr, "bench: warning: %s\n", slow.c_str());

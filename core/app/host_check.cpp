@@ -10,6 +10,7 @@
 #include <thread>
 
 namespace prism {
+#if defined(__x86_64__)
 namespace {
 
 /// Seconds for `count` dependent additions on the calling thread.
@@ -17,10 +18,8 @@ double time_add_chain(uint64_t count) {
   const auto start = std::chrono::steady_clock::now();
   uint64_t x = 0;
   for (uint64_t i = 0; i < count; ++i) {
-#if defined(__x86_64__)
     // One add per iteration that the compiler can neither fold nor vectorise.
     __asm__ volatile("add $1, %0" : "+r"(x));
-#endif
   }
   const auto end = std::chrono::steady_clock::now();
   return x == count ? std::chrono::duration<double>(end - start).count() : 0.0;
@@ -45,6 +44,7 @@ double speed_on(int cpu) {
 }
 
 }  // namespace
+#endif
 
 std::vector<CpuSpeed> measure_cpu_speeds() {
   std::vector<CpuSpeed> out;
@@ -61,21 +61,27 @@ std::vector<CpuSpeed> measure_cpu_speeds() {
   return out;
 }
 
+std::string format_cpu_speeds(const std::vector<CpuSpeed>& speeds) {
+  std::string line;
+  for (const CpuSpeed& s : speeds) {
+    line += fmt::format("{}cpu{} {:.2f}", line.empty() ? "" : ", ", s.cpu, s.gadds_per_s);
+  }
+  return line;
+}
+
 std::string describe_slow_cpus(const std::vector<CpuSpeed>& speeds, double threshold) {
   if (speeds.size() < 2) return {};
   double fastest = 0.0;
   for (const CpuSpeed& s : speeds) fastest = std::max(fastest, s.gadds_per_s);
-  std::string slow;
+  std::vector<CpuSpeed> slow;
   for (const CpuSpeed& s : speeds) {
-    if (s.gadds_per_s < threshold * fastest) {
-      slow += fmt::format("{}cpu{} {:.2f}", slow.empty() ? "" : ", ", s.cpu, s.gadds_per_s);
-    }
+    if (s.gadds_per_s < threshold * fastest) slow.push_back(s);
   }
   if (slow.empty()) return {};
   return fmt::format(
       "{} (fastest {:.2f} G adds/s): another thread shares these cores, so timings on them run "
       "slow",
-      slow, fastest);
+      format_cpu_speeds(slow), fastest);
 }
 
 }  // namespace prism

@@ -20,6 +20,10 @@ struct CpuSpeed {
 /// CPU set or the pinning is not available, or off x86-64.
 std::vector<CpuSpeed> measure_cpu_speeds();
 
+/// The CPUs and their speeds on one line: "cpu0 3.45, cpu1 3.44" (billions of additions per
+/// second).
+std::string format_cpu_speeds(const std::vector<CpuSpeed>& speeds);
+
 /// One line naming the CPUs that ran the chain at less than `threshold` of the fastest, with
 /// their speeds, or an empty string when none did (or fewer than two CPUs were measured).
 std::string describe_slow_cpus(const std::vector<CpuSpeed>& speeds, double threshold = 0.8);
