@@ -29,6 +29,13 @@ inline bool is_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+/// |v| per component, each by clearing its sign bit. glm::abs() computes `x >= 0 ? x : -x`,
+/// which GCC compiles to a compare and a branch per component; on the signs of surface points
+/// and normals those branches mispredict. The same values, except that -0 gives +0.
+inline Vec3 abs_components(const Vec3& v) {
+  return Vec3(std::abs(v.x), std::abs(v.y), std::abs(v.z));
+}
+
 /// Largest component of v.
 inline float max_component(const Vec3& v) { return glm::max(v.x, glm::max(v.y, v.z)); }
 /// Index (0, 1, 2) of the largest component of v.

@@ -6,7 +6,7 @@
 namespace prism {
 
 WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), tmin(ray.tmin), tmax(ray.tmax) {
-  const Vec3 abs_dir = glm::abs(ray.direction);
+  const Vec3 abs_dir = abs_components(ray.direction);
   kz = max_dimension(abs_dir);
   kx = (kz + 1) % 3;
   ky = (kx + 1) % 3;

@@ -43,21 +43,19 @@ constexpr float kMaxGapOfSize = 1.0f / 256.0f;
 /// a triangle so small for its coordinates that the padding exceeds kMaxGapOfSize of its size.
 /// A leaf whose largest triangle is larger than this one is padded more and may still be
 /// entered.
-Vec3 with_box_clearance(const Vec3& p, const Vec3& error, const Vec3& extent) {
+Lanes3 with_box_clearance(Lanes3 p, Lanes3 error, Lanes3 extent) {
   const float size = max_component(extent);
   const float gap =
-      kBoxGapMargin * (kBoxSizeGap * size + kBoxCoordinateGap * max_component(glm::abs(p)));
-  Vec3 out = error;
-  for (int a = 0; a < 3; ++a) {
-    if (extent[a] < gap && gap <= kMaxGapOfSize * size) out[a] = std::max(out[a], gap);
-  }
-  return out;
+      kBoxGapMargin * (kBoxSizeGap * size + kBoxCoordinateGap * max_component(abs_components(p)));
+  if (!(gap <= kMaxGapOfSize * size)) return error;
+  const Lanes3 gaps = lanes_of(gap);
+  return extent < gaps ? component_max(error, gaps) : error;
 }
 
 /// The error of a float point rounded once from a double computation on inputs whose
 /// magnitudes sum to `inputs` per component: half an ulp of the result plus the double's error.
-Vec3 rebuilt_point_error(const Vec3& p, const Vec3& inputs) {
-  return rounding_gamma(1) * glm::abs(p) + 0x1p-48f * inputs;
+Lanes3 rebuilt_point_error(Lanes3 p, Lanes3 inputs) {
+  return lanes_of(rounding_gamma(1)) * abs_components(p) + lanes_of(0x1p-48f) * inputs;
 }
 
 }  // namespace
@@ -76,8 +74,10 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
     const DVec3 unit = along_length > 0.0 ? along / along_length : DVec3(0.0, 0.0, 1.0);
     const Vec3 n(unit);
     si.position = Vec3(DVec3(s.center) + unit * double(s.radius));
-    si.position_error = rebuilt_point_error(si.position, glm::abs(s.center) + Vec3(s.radius)) +
-                        Vec3(kSphereTestGamma * s.radius);
+    si.position_error =
+        vec3_of(rebuilt_point_error(lanes_of(si.position),
+                                    abs_components(lanes_of(s.center)) + lanes_of(s.radius)) +
+                lanes_of(kSphereTestGamma * s.radius));
     // The sphere's normal at the float point: far from the world origin the point's rounding
     // turns it visibly from n, and sides must be judged where the point is.
     const DVec3 radial = DVec3(si.position) - DVec3(s.center);
@@ -98,14 +98,17 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
   // triangle's plane (a float 1 - u - v would move it off by a rounding of |p0| near edge p1 p2).
   const DVec3 d0(p0);
   si.position = Vec3(d0 + double(hit.u) * (DVec3(p1) - d0) + double(hit.v) * (DVec3(p2) - d0));
-  const Vec3 reach = glm::max(glm::abs(p0 - si.position),
-                              glm::max(glm::abs(p1 - si.position), glm::abs(p2 - si.position)));
+  // The error bounds per component, in vector lanes (core/lanes3.h).
+  const Lanes3 a = lanes_of(p0), b = lanes_of(p1), c = lanes_of(p2);
+  const Lanes3 p = lanes_of(si.position);
+  const Lanes3 reach = component_max(abs_components(a - p),
+                                     component_max(abs_components(b - p), abs_components(c - p)));
   const float test_error = kTriangleTestGamma * max_component(reach);
-  si.position_error = with_box_clearance(
-      si.position,
-      rebuilt_point_error(si.position, glm::abs(p0) + glm::abs(p1) + glm::abs(p2)) +
-          Vec3(test_error),
-      triangle_extent(p0, p1, p2));
+  si.position_error = vec3_of(with_box_clearance(
+      p,
+      rebuilt_point_error(p, abs_components(a) + abs_components(b) + abs_components(c)) +
+          lanes_of(test_error),
+      triangle_extent(a, b, c)));
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float ng_length = glm::length(ng);
   ng = ng_length > 0.0f ? ng / ng_length : -glm::normalize(ray.direction);
@@ -157,7 +160,7 @@ void Scene::validate() const {
 
 Vec3 offset_ray_origin(const Vec3& p, const Vec3& error, const Vec3& geometric_normal,
                        const Vec3& toward) {
-  const float distance = glm::dot(glm::abs(geometric_normal), error);
+  const float distance = glm::dot(abs_components(geometric_normal), error);
   const Vec3 n = glm::dot(geometric_normal, toward) >= 0.0f ? geometric_normal : -geometric_normal;
   Vec3 origin = p + distance * n;
   // p + distance * n may round back toward p by half an ulp: one more ulp outward makes the
@@ -189,8 +192,8 @@ Ray spawn_ray_to(const SurfaceInteraction& si, const Vec3& target) {
   r.tmin = 0.0f;
   // A target computed from a point far from the world origin is only known to a few ulps of its
   // coordinates: stop short of it by that too, or it may lie just behind its emitter.
-  const float rounding =
-      kTargetGamma * (max_component(glm::abs(target)) + max_component(glm::abs(r.origin)));
+  const float rounding = kTargetGamma * (max_component(abs_components(target)) +
+                                         max_component(abs_components(r.origin)));
   const float length = glm::length(r.direction);
   const float short_of = std::max(kShadowEpsilon, rounding / length);
   r.tmax = short_of < 1.0f ? 1.0f - short_of : 0.0f;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/bounds.h"
+#include "core/lanes3.h"
 #include "core/math.h"
 
 namespace prism {
@@ -55,9 +56,13 @@ struct SceneGeometry {
   void finalize();
 };
 
+/// The sides of the triangle's bounding box, corners and result in vector lanes (core/lanes3.h).
+inline Lanes3 triangle_extent(Lanes3 p0, Lanes3 p1, Lanes3 p2) {
+  return component_max(p0, component_max(p1, p2)) - component_min(p0, component_min(p1, p2));
+}
 /// The sides of the triangle's bounding box.
 inline Vec3 triangle_extent(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
-  return glm::max(p0, glm::max(p1, p2)) - glm::min(p0, glm::min(p1, p2));
+  return vec3_of(triangle_extent(lanes_of(p0), lanes_of(p1), lanes_of(p2)));
 }
 
 /// The size the wide BVH pads a triangle's boxes by (kBoxSizePaddingUlps, core/ray.h): the

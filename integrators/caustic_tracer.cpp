@@ -66,7 +66,7 @@ CausticTracer::CausticTracer(const RenderContext& context, const ShadingContext&
     targets_ = {{0.5f * (all.lower + all.upper), 0.5f * glm::length(all.upper - all.lower)}};
   }
   for (Target& t : targets_) {
-    t.radius = t.radius * 1.001f + 1e-4f * max_component(glm::abs(t.center));
+    t.radius = t.radius * 1.001f + 1e-4f * max_component(abs_components(t.center));
   }
 }
 

@@ -327,7 +327,8 @@ std::optional<LightLeSample> MeshLight::sample_le(Vec2 u_point, Vec2 u_direction
   // In double, as Scene::surface_at() rebuilds a hit point: one rounding off the plane.
   const DVec3 d0(p0);
   const Vec3 q(d0 + double(b.x) * (DVec3(p1) - d0) + double(b.y) * (DVec3(p2) - d0));
-  const Vec3 error = emitter_point_error(max_component(glm::abs(p0) + glm::abs(p1) + glm::abs(p2)));
+  const Vec3 error = emitter_point_error(
+      max_component(abs_components(p0) + abs_components(p1) + abs_components(p2)));
   return leaving_point(q, error, normals_[i], two_sided_, area_, radiance_at(i, b), u_direction);
 }
 
@@ -363,7 +364,8 @@ std::optional<LightLeSample> SphereLight::sample_le(Vec2 u_point, Vec2 u_directi
   if (!(area > 0.0f)) return std::nullopt;
   const Vec3 n = square_to_uniform_sphere(u_point);
   const Vec3 q(DVec3(sphere_.center) + double(sphere_.radius) * DVec3(n));
-  const Vec3 error = emitter_point_error(max_component(glm::abs(sphere_.center)) + sphere_.radius);
+  const Vec3 error =
+      emitter_point_error(max_component(abs_components(sphere_.center)) + sphere_.radius);
   return leaving_point(q, error, n, two_sided_, area, radiance_at(n), u_direction);
 }
 
