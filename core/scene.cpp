@@ -94,13 +94,16 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
   const Vec3& p1 = mesh.positions[tri.y];
   const Vec3& p2 = mesh.positions[tri.z];
   const float w = 1.0f - hit.u - hit.v;
-  // In double, as p0 + u (p1 - p0) + v (p2 - p0): the float point is one rounding off the
+  // Each component in vector lanes (core/lanes3.h), by glm's operations: the same bits. The point
+  // in double, as p0 + u (p1 - p0) + v (p2 - p0): the float point is one rounding off the
   // triangle's plane (a float 1 - u - v would move it off by a rounding of |p0| near edge p1 p2).
-  const DVec3 d0(p0);
-  si.position = Vec3(d0 + double(hit.u) * (DVec3(p1) - d0) + double(hit.v) * (DVec3(p2) - d0));
-  // The error bounds per component, in vector lanes (core/lanes3.h).
   const Lanes3 a = lanes_of(p0), b = lanes_of(p1), c = lanes_of(p2);
-  const Lanes3 p = lanes_of(si.position);
+  const DoubleLanes3 da = __builtin_convertvector(a, DoubleLanes3);
+  const DoubleLanes3 db = __builtin_convertvector(b, DoubleLanes3);
+  const DoubleLanes3 dc = __builtin_convertvector(c, DoubleLanes3);
+  const Lanes3 p =
+      __builtin_convertvector(da + double(hit.u) * (db - da) + double(hit.v) * (dc - da), Lanes3);
+  si.position = vec3_of(p);
   const Lanes3 reach = component_max(abs_components(a - p),
                                      component_max(abs_components(b - p), abs_components(c - p)));
   const float test_error = kTriangleTestGamma * max_component(reach);
@@ -109,25 +112,29 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
       rebuilt_point_error(p, abs_components(a) + abs_components(b) + abs_components(c)) +
           lanes_of(test_error),
       triangle_extent(a, b, c)));
-  Vec3 ng = glm::cross(p1 - p0, p2 - p0);
-  const float ng_length = glm::length(ng);
-  ng = ng_length > 0.0f ? ng / ng_length : -glm::normalize(ray.direction);
-  si.geometric_normal = ng;
-  si.shading_normal = ng;
+  const Lanes3 ng = cross(b - a, c - a);
+  const float ng_length = std::sqrt(dot(ng, ng));
+  const Lanes3 unit_ng =
+      ng_length > 0.0f ? ng / lanes_of(ng_length) : lanes_of(-glm::normalize(ray.direction));
+  si.geometric_normal = vec3_of(unit_ng);
+  si.shading_normal = si.geometric_normal;
   if (!mesh.normals.empty()) {
-    const size_t c = 3 * size_t(hit.prim_id);
-    const Vec3 ns = w * mesh.normals[c] + hit.u * mesh.normals[c + 1] + hit.v * mesh.normals[c + 2];
-    const float ns_length = glm::length(ns);
+    const size_t corner = 3 * size_t(hit.prim_id);
+    const Lanes3 ns = lanes_of(w) * lanes_of(mesh.normals[corner]) +
+                      lanes_of(hit.u) * lanes_of(mesh.normals[corner + 1]) +
+                      lanes_of(hit.v) * lanes_of(mesh.normals[corner + 2]);
+    const float ns_length = std::sqrt(dot(ns, ns));
     if (ns_length > 0.0f && std::isfinite(ns_length)) {
-      si.shading_normal = ns / ns_length;
+      const Lanes3 unit_ns = ns / lanes_of(ns_length);
+      si.shading_normal = vec3_of(unit_ns);
       // Files whose winding disagrees with their normals (the CS184 Cornell floor): trust the
       // authored normal and turn the geometric one to its side.
-      if (glm::dot(si.shading_normal, ng) < 0.0f) si.geometric_normal = -ng;
+      if (dot(unit_ns, unit_ng) < 0.0f) si.geometric_normal = -si.geometric_normal;
     }
   }
   if (!mesh.uvs.empty()) {
-    const size_t c = 3 * size_t(hit.prim_id);
-    si.uv = w * mesh.uvs[c] + hit.u * mesh.uvs[c + 1] + hit.v * mesh.uvs[c + 2];
+    const size_t corner = 3 * size_t(hit.prim_id);
+    si.uv = w * mesh.uvs[corner] + hit.u * mesh.uvs[corner + 1] + hit.v * mesh.uvs[corner + 2];
   } else {
     si.uv = Vec2(hit.u, hit.v);
   }
