@@ -1,7 +1,7 @@
 #pragma once
 
 // A 3-vector in the low lanes of one 128-bit vector register, for the per-component arithmetic
-// of hot scalar code (Scene::surface_at()'s error bounds). GCC compiles glm's Vec3 arithmetic to
+// of hot scalar code (the hit rebuild, Scene::surface_at()). GCC compiles glm's Vec3 arithmetic to
 // one scalar instruction per component and glm::abs() to a compare and a branch per component,
 // and its superword vectoriser then shuffles the scalars in and out of vector registers; the
 // same arithmetic on Lanes3 is one instruction per operation (docs/PERFORMANCE.md, "surface_at
