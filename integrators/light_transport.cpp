@@ -13,6 +13,18 @@ LightTransportSettings::LightTransportSettings(const std::string& name, const Pa
       hemisphere(params.get_bool(name + ".hemisphere", false)) {
   lights.ambient_visible = params.get_bool(name + ".ambient_visible", false);
   lights.two_sided_emitters = params.get_bool(name + ".two_sided_emitters", false);
+  const std::string rectangles = params.get_string(name + ".rectangle_sampling", "bilinear");
+  if (rectangles == "bilinear") {
+    lights.rectangle_sampling = RectangleSampling::kBilinear;
+  } else if (rectangles == "solid_angle") {
+    lights.rectangle_sampling = RectangleSampling::kSolidAngle;
+  } else if (rectangles == "area") {
+    lights.rectangle_sampling = RectangleSampling::kArea;
+  } else {
+    throw Error(ErrorKind::kUsage,
+                "bad value '" + rectangles + "' for " + name +
+                    ".rectangle_sampling; expected bilinear, solid_angle or area");
+  }
   const std::string model = params.get_string(name + ".microfacet", "beckmann");
   if (model == "beckmann") {
     bsdf.microfacet = MicrofacetModel::kBeckmann;

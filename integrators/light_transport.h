@@ -22,7 +22,9 @@ namespace prism {
 /// - hemisphere (default false; -H): the one-bounce estimate by uniform hemisphere sampling;
 /// - ambient_visible (default false): ambient lights are a sky that escaping rays see (camera
 ///   rays and bounces, MIS-weighted), not only lights found by light sampling (LightOptions);
-/// - two_sided_emitters (default false; --two-sided-emitters): emitters lit on both sides.
+/// - two_sided_emitters (default false; --two-sided-emitters): emitters lit on both sides;
+/// - rectangle_sampling (default bilinear; solid_angle or area): how points are drawn on
+///   rectangular emitters (RectangleSampling).
 struct LightTransportSettings {
   /// Throws Error(kUsage) naming the key on a bad value.
   LightTransportSettings(const std::string& name, const ParamSet& params);

@@ -37,6 +37,14 @@ TEST(IntegratorsIntegrator, RegistryListsEveryIntegrator) {
   ParamSet bad;
   bad.set("path.microfacet", "phong");
   EXPECT_THROW(registry.create("path", bad), Error);
+  for (const char* rectangles : {"bilinear", "solid_angle", "area"}) {
+    ParamSet good;
+    good.set("direct.rectangle_sampling", rectangles);
+    EXPECT_NO_THROW(registry.create("direct", good)) << rectangles;
+  }
+  ParamSet bad_rectangles;
+  bad_rectangles.set("path.rectangle_sampling", "spherical");
+  EXPECT_THROW(registry.create("path", bad_rectangles), Error);
   ParamSet bad_rr;
   bad_rr.set("path.rr_probability", "1.5");
   EXPECT_THROW(registry.create("path", bad_rr), Error);

@@ -99,9 +99,19 @@ TEST(IntegratorsLights, MeshLightSamplesRectanglesAsOne) {
 }
 
 TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
-  // The rectangle (sampled as one) and a parallelogram (two triangles).
-  for (const TriangleMesh& mesh : {tilted_quad(), tilted_parallelogram()}) {
-    const MeshLight light(mesh, Rgb(2.0f), false);
+  // The rectangle (sampled as one) in each of its samplings, and a parallelogram (two
+  // triangles, which the rectangle sampling leaves alone).
+  struct Case {
+    TriangleMesh mesh;
+    RectangleSampling rectangles;
+  };
+  const Case cases[] = {{tilted_quad(), RectangleSampling::kBilinear},
+                        {tilted_quad(), RectangleSampling::kSolidAngle},
+                        {tilted_quad(), RectangleSampling::kArea},
+                        {tilted_parallelogram(), RectangleSampling::kBilinear}};
+  for (const Case& c : cases) {
+    const TriangleMesh& mesh = c.mesh;
+    const MeshLight light(mesh, Rgb(2.0f), false, {}, c.rectangles);
     // Below the quad (solid angle) and close to it, where its
     // triangles' solid angles differ most.
     for (const Vec3& p : {Vec3(0.0f), Vec3(1.5f, -0.5f, 0.5f), Vec3(0.3f, 0.1f, 1.85f)}) {
@@ -119,8 +129,8 @@ TEST(IntegratorsLights, MeshLightSamplingMatchesPdf) {
       options.phi_bins = 80;
       const ChiSquareResult r = directional_chi_square(sampler, pdf, options);
       EXPECT_EQ(r.impossible_observations, 0u);
-      EXPECT_GT(r.p_value, kSignificance)
-          << r.summary() << " at " << p.x << " " << p.y << " " << p.z;
+      EXPECT_GT(r.p_value, kSignificance) << r.summary() << " at " << p.x << " " << p.y << " "
+                                          << p.z << ", rectangle sampling " << int(c.rectangles);
     }
   }
 }

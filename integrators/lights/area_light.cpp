@@ -98,8 +98,12 @@ Rgb ParallelogramLight::power() const {
 }
 
 MeshLight::MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sided,
-                     EmissionTexture texture)
-    : mesh_(mesh), radiance_(radiance), texture_(texture), two_sided_(two_sided) {
+                     EmissionTexture texture, RectangleSampling rectangle_sampling)
+    : mesh_(mesh),
+      radiance_(radiance),
+      texture_(texture),
+      two_sided_(two_sided),
+      rectangle_sampling_(rectangle_sampling) {
   std::vector<float> areas(mesh.triangles.size());
   normals_.resize(mesh.triangles.size());
   double total = 0.0;
@@ -220,8 +224,15 @@ std::optional<LightLiSample> MeshLight::sample_li(const Vec3& p, Vec2 u) const {
     // From the back of a one-sided emitter (or in its plane) the rectangle sends nothing.
     const float side = -glm::dot(normals_[0], rectangle_->corner - p);
     if (two_sided_ ? side == 0.0f : !(side > 0.0f)) return std::nullopt;
+    if (rectangle_sampling_ == RectangleSampling::kBilinear) {
+      const BilinearCorners w = solid_angle_corners(*rectangle_, p);
+      const Vec2 uv = sample_bilinear(u, w);
+      return toward_point(p, rectangle_->point_at(uv), normals_[0], two_sided_,
+                          bilinear_pdf(uv, w) / area_, radiance_);
+    }
     std::optional<SphericalRectangle> spherical;
-    if (rectangle_in_solid_angle(p, side, spherical)) {
+    if (rectangle_sampling_ == RectangleSampling::kSolidAngle &&
+        rectangle_in_solid_angle(p, side, spherical)) {
       const std::optional<Vec3> q = spherical->sample(u);
       if (!q) return std::nullopt;
       std::optional<LightLiSample> s =
@@ -291,9 +302,17 @@ float MeshLight::pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) cons
   const float cos_light = emitting_cos(light_hit.geometric_normal, -d / distance, two_sided_);
   if (cos_light <= 0.0f) return 0.0f;
   if (rectangle_) {
+    if (rectangle_sampling_ == RectangleSampling::kBilinear) {
+      const float pdf_area = bilinear_pdf(rectangle_->extent_of(light_hit.position),
+                                          solid_angle_corners(*rectangle_, p));
+      return area_to_solid_angle_pdf(pdf_area / area_, distance, cos_light);
+    }
     const float side = -glm::dot(normals_[0], rectangle_->corner - p);
     std::optional<SphericalRectangle> spherical;
-    if (rectangle_in_solid_angle(p, side, spherical)) return 1.0f / spherical->solid_angle();
+    if (rectangle_sampling_ == RectangleSampling::kSolidAngle &&
+        rectangle_in_solid_angle(p, side, spherical)) {
+      return 1.0f / spherical->solid_angle();
+    }
     return area_to_solid_angle_pdf(1.0f / area_, distance, cos_light);
   }
   const size_t n = mesh_.triangles.size();

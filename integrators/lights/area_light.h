@@ -50,17 +50,21 @@ class ParallelogramLight final : public LightSource {
 ///   outside [kMinSphericalSolidAngle, kMaxSphericalSolidAngle]; a triangle farther away is
 ///   weighted by area x cos / distance^2 at its centroid and sampled uniformly in area, which
 ///   is nearly as good there and much cheaper.
-/// - a rectangle of two triangles without a texture (every CS184 light): as one rectangle, by
-///   the same rule with its diagonal as the longest edge: uniformly in its solid angle
+/// - a rectangle of two triangles without a texture (every CS184 light): as one rectangle (the
+///   two triangles' choice left out), by `rectangle_sampling`: by default in proportion to a
+///   bilinear fit of the density uniform in solid angle (solid_angle_corners()); or as the
+///   triangles are, with its diagonal as the longest edge: uniformly in its solid angle
 ///   (SphericalRectangle) when the point is close and that solid angle is in
 ///   [kMinSphericalRectangleSolidAngle, kMaxSphericalSolidAngle], uniformly in its area
-///   otherwise. The two triangles' choice and their two solid angles are left out: about half
-///   the work per light sample (docs/PERFORMANCE.md, "2026-12-05").
+///   otherwise; or uniformly in its area. The bilinear fit has less variance than the solid
+///   angle in the Cornell boxes for about a tenth of the time per sample (docs/PERFORMANCE.md,
+///   "bilinear").
 /// - larger meshes: a triangle by area and a point uniformly on it.
 class MeshLight final : public LightSource {
  public:
   MeshLight(const TriangleMesh& mesh, const Rgb& radiance, bool two_sided,
-            EmissionTexture texture = {});
+            EmissionTexture texture = {},
+            RectangleSampling rectangle_sampling = RectangleSampling::kBilinear);
   LightKind kind() const override { return LightKind::kSurface; }
   std::optional<LightLiSample> sample_li(const Vec3& p, Vec2 u) const override;
   float pdf_li(const Vec3& p, const SurfaceInteraction& light_hit) const override;
@@ -109,6 +113,7 @@ class MeshLight final : public LightSource {
   std::optional<Rectangle> rectangle_;  ///< the mesh as one rectangle, when it is one
   float area_ = 0.0f;
   bool two_sided_;
+  RectangleSampling rectangle_sampling_;
 };
 
 /// An emissive sphere as an area light emitting outward (and inward when `two_sided`);

@@ -61,8 +61,8 @@ LightSet::LightSet(const Scene& scene, const LightOptions& options, const Surfac
     const Material& m = scene.materials[mesh.material_id];
     if (!m.is_emissive() || max_component(m.radiance) <= 0.0f || mesh.triangles.empty()) continue;
     mesh_light_[i] = int(lights_.size());
-    lights_.push_back(
-        std::make_unique<MeshLight>(mesh, m.radiance, two_sided, emission_texture(m, textures)));
+    lights_.push_back(std::make_unique<MeshLight>(
+        mesh, m.radiance, two_sided, emission_texture(m, textures), options.rectangle_sampling));
   }
   sphere_light_.assign(geometry.spheres.size(), -1);
   for (size_t i = 0; i < geometry.spheres.size(); ++i) {

@@ -21,6 +21,9 @@ struct LightOptions {
   /// as Blender's emission does. False (the default, as the homework's light sampling): from
   /// the front only.
   bool two_sided_emitters = false;
+  /// How rectangular emitters are sampled (`<name>.rectangle_sampling`: bilinear, the default,
+  /// solid_angle or area; docs/PERFORMANCE.md, "bilinear").
+  RectangleSampling rectangle_sampling = RectangleSampling::kBilinear;
 };
 
 /// Every light of a scene, built once per render: the scene's point, spot, directional,

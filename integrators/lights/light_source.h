@@ -19,6 +19,19 @@ enum class LightKind {
   kHiddenInfinite,
 };
 
+/// How sample_li() draws points on an emitter that is a rectangle (MeshLight; LightOptions).
+enum class RectangleSampling {
+  /// In proportion to a bilinear fit of the density uniform in solid angle (cos / distance^2 at
+  /// the corners, Hart et al. 2020): about the solid angle's variance at the cost of a few
+  /// square roots.
+  kBilinear,
+  /// Uniformly in the spherical rectangle's solid angle near the emitter (Urena et al. 2013),
+  /// uniformly in area farther away.
+  kSolidAngle,
+  /// Uniformly in area.
+  kArea,
+};
+
 /// A direction toward a light from a reference point, from LightSource::sample_li().
 struct LightLiSample {
   Rgb li{0.0f};   ///< radiance (or, for delta lights, intensity-derived irradiance factor)

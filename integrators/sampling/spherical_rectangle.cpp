@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__SSE__)
+#include <immintrin.h>
+#endif
 
 #include "integrators/sampling/warp.h"
 
@@ -20,6 +23,33 @@ std::optional<Rectangle> rectangle_from_corner(const Vec3& corner, const Vec3& p
   r.length_x = lx;
   r.length_y = ly;
   return r;
+}
+
+Vec2 Rectangle::extent_of(const Vec3& q) const {
+  const Vec3 o = q - corner;
+  return {std::clamp(glm::dot(o, unit_x) / length_x, 0.0f, 1.0f),
+          std::clamp(glm::dot(o, unit_y) / length_y, 0.0f, 1.0f)};
+}
+
+BilinearCorners solid_angle_corners(const Rectangle& rectangle, const Vec3& p) {
+  // The four corners' squared distances in four lanes of one register: one square root and
+  // one division for all of them (this runs once per light sample).
+  using Lanes = float __attribute__((vector_size(16)));
+  const Vec3 d = rectangle.corner - p;
+  const float x0 = glm::dot(d, rectangle.unit_x), y0 = glm::dot(d, rectangle.unit_y);
+  const float z = glm::dot(d, rectangle.normal);
+  const float x1 = x0 + rectangle.length_x, y1 = y0 + rectangle.length_y;
+  const Lanes x = {x0, x1, x0, x1}, y = {y0, y0, y1, y1};
+  const Lanes r2 = x * x + y * y + z * z;
+#if defined(__SSE__)
+  const Lanes r = reinterpret_cast<Lanes>(_mm_sqrt_ps(reinterpret_cast<__m128>(r2)));
+#else
+  const Lanes r = {std::sqrt(r2[0]), std::sqrt(r2[1]), std::sqrt(r2[2]), std::sqrt(r2[3])};
+#endif
+  const Lanes w = 1.0f / (r2 * r);
+  const float sum = (w[0] + w[1]) + (w[2] + w[3]);
+  if (!std::isfinite(sum) || !(sum > 0.0f)) return {1.0f, 1.0f, 1.0f, 1.0f};
+  return {w[0], w[1], w[2], w[3]};
 }
 
 SphericalRectangle::SphericalRectangle(const Rectangle& rectangle, const Vec3& reference)

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "core/math.h"
+#include "integrators/sampling/bilinear.h"
 
 namespace prism {
 
@@ -18,7 +19,15 @@ struct Rectangle {
   Vec3 point_at(Vec2 u) const {
     return corner + (u.x * length_x) * unit_x + (u.y * length_y) * unit_y;
   }
+  /// The (u.x, u.y) of point_at() nearest to `q`, clamped to [0, 1]^2.
+  Vec2 extent_of(const Vec3& q) const;
 };
+
+/// For sample_bilinear() on the rectangle's extent (point_at()): the density uniform in solid
+/// angle seen from `p`, cos / distance^2, at its four corners, up to one factor (1 /
+/// distance^3: the cosine's distance to the plane is the same for all). Equal weights when
+/// they are not finite (p at a corner, or distances beyond float's range).
+BilinearCorners solid_angle_corners(const Rectangle& rectangle, const Vec3& p);
 
 /// Relative tolerance of the rectangle tests: of the cosine between two edges, and of a fourth
 /// corner's distance from where the rectangle puts it (MeshLight).
