@@ -21,7 +21,9 @@ PathIntegrator::Settings::Settings(const ParamSet& params)
       rr_threshold(float(params.get_float("path.rr_threshold", kDefaultRrThreshold, 1e-6, 1.0))),
       caustics(params.get_bool("path.caustics", true)),
       caustic_paths(params.get_float("path.caustic_paths", kDefaultCausticPaths, 0x1p-20, 64.0)),
-      caustic_radius(params.get_float("path.caustic_radius", kDefaultCausticRadius, 0.0, 1.0)) {}
+      caustic_radius(params.get_float("path.caustic_radius", kDefaultCausticRadius, 0.0, 1.0)),
+      caustic_connections(float(params.get_float("path.caustic_connections",
+                                                 kDefaultCausticConnections, 0x1p-20, 1.0))) {}
 
 namespace {
 
@@ -267,8 +269,14 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
     if (!bsdf.is_delta() && (accumulate || bounces + 1 == max_depth)) {
       Rgb direct;
       // The caustic vertex the first hit connects to, chosen first so that it loads meanwhile.
-      const CausticVertex* vertex =
-          traced && first_hit_bounces < 0 ? traced->choose_vertex(sampler.get_1d()) : nullptr;
+      // Made with probability caustic_connections: the same sampler value decides and, rescaled,
+      // chooses the vertex.
+      const CausticVertex* vertex = nullptr;
+      if (traced && first_hit_bounces < 0) {
+        const float u = sampler.get_1d();
+        const float p = settings_.caustic_connections;
+        if (u < p) vertex = traced->choose_vertex(std::min(u / p, 0x1.fffffep-1f));
+      }
       if (settings_.mis && light_samples <= 1) {
         // One light sample (the default): its values drawn, then the BSDF sample taken before
         // the light's, so that the two chains of dependent square roots and divisions overlap
@@ -286,7 +294,9 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
       }
       add(beta * direct, bounces + 1);
       if (vertex) {
-        add(beta * connect_caustic_vertex(sp, bounces, *traced, *vertex), bounces + 2);
+        add(beta * connect_caustic_vertex(sp, bounces, *traced, *vertex) *
+                (1.0f / settings_.caustic_connections),
+            bounces + 2);
       }
     }
 

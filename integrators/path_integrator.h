@@ -36,6 +36,10 @@ namespace prism {
 ///   this far away, and the camera paths that would find that light through a second surface
 ///   that far away are left out; nearer pairs stay with the camera paths (a connection's
 ///   1 / distance^2 would make fireflies of them).
+/// - caustic_connections (default kDefaultCausticConnections, in [2^-20, 1]): the probability
+///   that a first hit makes that connection (weighted by its inverse; the paths it covers stay
+///   left out either way): each connection costs a shadow ray and two BSDF evaluations, and
+///   CBspheres' error barely depends on how many are made (docs/PERFORMANCE.md).
 /// - microfacet, light_samples, hemisphere, ambient_visible, two_sided_emitters: see
 ///   LightTransportSettings.
 class PathIntegrator final : public PixelIntegrator {
@@ -55,11 +59,13 @@ class PathIntegrator final : public PixelIntegrator {
     bool caustics;
     double caustic_paths;
     double caustic_radius;
+    float caustic_connections;
   };
 
   static constexpr double kDefaultCausticPaths = 0.02;
   static constexpr double kDefaultRrThreshold = 0.25;
   static constexpr double kDefaultCausticRadius = 0.05;
+  static constexpr double kDefaultCausticConnections = 0.25;
 
   explicit PathIntegrator(const ParamSet& params);
   std::string_view name() const override { return "path"; }

@@ -45,6 +45,11 @@ TEST(IntegratorsIntegrator, RegistryListsEveryIntegrator) {
   ParamSet bad_rectangles;
   bad_rectangles.set("path.rectangle_sampling", "spherical");
   EXPECT_THROW(registry.create("path", bad_rectangles), Error);
+  for (const char* probability : {"0", "1.5", "nan"}) {
+    ParamSet bad_connections;
+    bad_connections.set("path.caustic_connections", probability);
+    EXPECT_THROW(registry.create("path", bad_connections), Error) << probability;
+  }
   ParamSet bad_rr;
   bad_rr.set("path.rr_probability", "1.5");
   EXPECT_THROW(registry.create("path", bad_rr), Error);
