@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <thread>
@@ -34,30 +35,25 @@ TEST(IntegratorsIntegrator, RegistryListsEveryIntegrator) {
     EXPECT_EQ(e.kind(), ErrorKind::kUsage);
     EXPECT_NE(std::string(e.what()).find("path"), std::string::npos) << e.what();
   }
-  ParamSet bad;
-  bad.set("path.microfacet", "phong");
-  EXPECT_THROW(registry.create("path", bad), Error);
-  for (const char* rectangles : {"bilinear", "solid_angle", "area"}) {
-    ParamSet good;
-    good.set("direct.rectangle_sampling", rectangles);
-    EXPECT_NO_THROW(registry.create("direct", good)) << rectangles;
-  }
-  ParamSet bad_rectangles;
-  bad_rectangles.set("path.rectangle_sampling", "spherical");
-  EXPECT_THROW(registry.create("path", bad_rectangles), Error);
-  for (const char* probability : {"0", "1.5", "nan"}) {
-    ParamSet bad_connections;
-    bad_connections.set("path.caustic_connections", probability);
-    EXPECT_THROW(registry.create("path", bad_connections), Error) << probability;
-  }
-  ParamSet bad_rr;
-  bad_rr.set("path.rr_probability", "1.5");
-  EXPECT_THROW(registry.create("path", bad_rr), Error);
-  for (const char* threshold : {"0", "-0.5", "1.5", "nan"}) {
-    ParamSet bad_threshold;
-    bad_threshold.set("path.rr_threshold", threshold);
-    EXPECT_THROW(registry.create("path", bad_threshold), Error) << threshold;
-  }
+  // Each value of `key` makes `integrator` throw (or not, with `accepted`).
+  const auto check_values = [&](const char* integrator, const std::string& key,
+                                std::initializer_list<const char*> values, bool accepted) {
+    for (const char* value : values) {
+      ParamSet params;
+      params.set(key, value);
+      if (accepted) {
+        EXPECT_NO_THROW(registry.create(integrator, params)) << key << "=" << value;
+      } else {
+        EXPECT_THROW(registry.create(integrator, params), Error) << key << "=" << value;
+      }
+    }
+  };
+  check_values("path", "path.microfacet", {"phong"}, false);
+  check_values("direct", "direct.rectangle_sampling", {"bilinear", "solid_angle", "area"}, true);
+  check_values("path", "path.rectangle_sampling", {"spherical"}, false);
+  check_values("path", "path.caustic_connections", {"0", "1.5", "nan"}, false);
+  check_values("path", "path.rr_probability", {"1.5"}, false);
+  check_values("path", "path.rr_threshold", {"0", "-0.5", "1.5", "nan"}, false);
 }
 
 TEST(IntegratorsIntegrator, FlagAliasesReachTheIntegratorsThatReadThem) {
