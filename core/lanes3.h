@@ -9,7 +9,11 @@
 // are the same bit for bit (except that the absolute value of -0 is +0). GCC and Clang vector
 // extensions: portable to every target either compiler has.
 
+#include <cmath>
 #include <cstdint>
+#if defined(__SSE__)
+#include <immintrin.h>
+#endif
 
 #include "core/math.h"
 
@@ -49,6 +53,15 @@ inline Lanes3 cross(Lanes3 a, Lanes3 b) {
   const Lanes3 a_zxy = __builtin_shufflevector(a, a, 2, 0, 1, 3);
   const Lanes3 b_zxy = __builtin_shufflevector(b, b, 2, 0, 1, 3);
   return a_yzx * b_zxy - b_yzx * a_zxy;
+}
+
+/// The square root of every lane (all four): one instruction where SSE has it.
+inline Lanes3 square_roots(Lanes3 v) {
+#if defined(__SSE__)
+  return reinterpret_cast<Lanes3>(_mm_sqrt_ps(reinterpret_cast<__m128>(v)));
+#else
+  return Lanes3{std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3])};
+#endif
 }
 
 /// The largest of lanes 0-2, as max_component(const Vec3&).

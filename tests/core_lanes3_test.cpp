@@ -82,5 +82,14 @@ TEST(CoreLanes3, DoubleLanesRoundLikeGlmsDoubleVectors) {
   }
 }
 
+TEST(CoreLanes3, SquareRootsAreStdSqrtInEveryLane) {
+  const std::vector<Vec3> v = random_vectors(3000);
+  for (size_t i = 0; i + 1 < v.size(); ++i) {
+    const Lanes3 x = abs_components(Lanes3{v[i].x, v[i].y, v[i].z, v[i + 1].x});
+    const Lanes3 r = square_roots(x);
+    for (int k = 0; k < 4; ++k) ASSERT_EQ(bits_of(r[k]), bits_of(std::sqrt(x[k]))) << "lane " << k;
+  }
+}
+
 }  // namespace
 }  // namespace prism

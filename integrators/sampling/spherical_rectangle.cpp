@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#if defined(__SSE__)
-#include <immintrin.h>
-#endif
 
+#include "core/lanes3.h"
 #include "integrators/sampling/warp.h"
 
 namespace prism {
@@ -32,21 +30,15 @@ Vec2 Rectangle::extent_of(const Vec3& q) const {
 }
 
 BilinearCorners solid_angle_corners(const Rectangle& rectangle, const Vec3& p) {
-  // The four corners' squared distances in four lanes of one register: one square root and
-  // one division for all of them (this runs once per light sample).
-  using Lanes = float __attribute__((vector_size(16)));
+  // The four corners' squared distances in the four lanes of one register (Lanes3, all of its
+  // lanes): one square root and one division for all of them (this runs once per light sample).
   const Vec3 d = rectangle.corner - p;
   const float x0 = glm::dot(d, rectangle.unit_x), y0 = glm::dot(d, rectangle.unit_y);
   const float z = glm::dot(d, rectangle.normal);
   const float x1 = x0 + rectangle.length_x, y1 = y0 + rectangle.length_y;
-  const Lanes x = {x0, x1, x0, x1}, y = {y0, y0, y1, y1};
-  const Lanes r2 = x * x + y * y + z * z;
-#if defined(__SSE__)
-  const Lanes r = reinterpret_cast<Lanes>(_mm_sqrt_ps(reinterpret_cast<__m128>(r2)));
-#else
-  const Lanes r = {std::sqrt(r2[0]), std::sqrt(r2[1]), std::sqrt(r2[2]), std::sqrt(r2[3])};
-#endif
-  const Lanes w = 1.0f / (r2 * r);
+  const Lanes3 x = {x0, x1, x0, x1}, y = {y0, y0, y1, y1};
+  const Lanes3 r2 = x * x + y * y + z * z;
+  const Lanes3 w = 1.0f / (r2 * square_roots(r2));
   const float sum = (w[0] + w[1]) + (w[2] + w[3]);
   if (!std::isfinite(sum) || !(sum > 0.0f)) return {1.0f, 1.0f, 1.0f, 1.0f};
   return {w[0], w[1], w[2], w[3]};
