@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
 #include <string>
@@ -58,10 +59,30 @@ void keep_freed_memory() {
   mallopt(M_TRIM_THRESHOLD, 1 << 30);   // and no trimming of the heap's top below 1 GiB free
 }
 
+/// Ends the process with `code` once the command is done: every file it wrote is closed and
+/// renamed into place by then, so only stdio is left to flush. The libraries' static destructors
+/// (about 260 of them come with OpenImageIO) would take another 15-20 ms per command, mostly
+/// faulting in code never run before; they are skipped. Sanitizer builds exit normally, since
+/// LeakSanitizer reports from an exit handler.
+[[noreturn]] void exit_now(int code) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  std::exit(code);
+#else
+  std::_Exit(code);
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   keep_freed_memory();
-  prism::MpiWorld world;
-  return world.exit(run(argc, argv));
+  int code = 0;
+  {
+    prism::MpiWorld world;
+    code = world.exit(run(argc, argv));
+    // MPI is finalised (the world's destructor) before the process ends.
+  }
+  exit_now(code);
 }
