@@ -89,15 +89,21 @@ SurfaceInteraction Scene::surface_at(const Ray& ray, const Hit& hit) const {
     return si;
   }
   const TriangleMesh& mesh = geometry.meshes[hit.geom_id];
-  const glm::uvec3 tri = mesh.triangles[hit.prim_id];
-  const Vec3& p0 = mesh.positions[tri.x];
-  const Vec3& p1 = mesh.positions[tri.y];
-  const Vec3& p2 = mesh.positions[tri.z];
+  Lanes3 a, b, c;
+  if (const float* q = hit.vertex_lanes) {
+    a = Lanes3{q[0], q[4], q[8], 0.0f};
+    b = Lanes3{q[12], q[16], q[20], 0.0f};
+    c = Lanes3{q[24], q[28], q[32], 0.0f};
+  } else {
+    const glm::uvec3 tri = mesh.triangles[hit.prim_id];
+    a = lanes_of(mesh.positions[tri.x]);
+    b = lanes_of(mesh.positions[tri.y]);
+    c = lanes_of(mesh.positions[tri.z]);
+  }
   const float w = 1.0f - hit.u - hit.v;
   // Each component in vector lanes (core/lanes3.h), by glm's operations: the same bits. The point
   // in double, as p0 + u (p1 - p0) + v (p2 - p0): the float point is one rounding off the
   // triangle's plane (a float 1 - u - v would move it off by a rounding of |p0| near edge p1 p2).
-  const Lanes3 a = lanes_of(p0), b = lanes_of(p1), c = lanes_of(p2);
   const DoubleLanes3 da = __builtin_convertvector(a, DoubleLanes3);
   const DoubleLanes3 db = __builtin_convertvector(b, DoubleLanes3);
   const DoubleLanes3 dc = __builtin_convertvector(c, DoubleLanes3);

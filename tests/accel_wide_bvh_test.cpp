@@ -25,6 +25,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/primitive_intersection.h"
+#include "core/scene.h"
 #include "scenes/mesh_generator.h"
 #include "tests/support/test_support.h"
 
@@ -192,6 +193,55 @@ TEST(AccelWideBvh, MatchesBruteForceBitForBitEverySplitLayoutAndIsa) {
             }
           }
         }
+      }
+    }
+  }
+}
+
+// A triangle hit carries its triangle's corners from the tree's leaf (Hit::vertex_lanes), the
+// mesh's own floats; Scene::surface_at() reading them gives what it gives reading the mesh.
+TEST(AccelWideBvh, TriangleHitsCarryTheirCornersForSurfaceAt) {
+  for (const NamedScene& named : make_scenes()) {
+    Scene scene;
+    scene.geometry = named.geometry;
+    const std::vector<Ray> rays = random_rays(scene.geometry.bounds(), 600, 17);
+    for (const std::string layout : {"bvh2", "bvh8"}) {
+      for (const std::string& isa : isas()) {
+        // Spatial splits: a triangle's references in several leaves all carry its corners.
+        WideBvhAccelerator bvh(parse_wide_bvh_options(bvh_params("sbvh", layout, isa)));
+        bvh.build(scene.geometry);
+        size_t triangle_hits = 0;
+        for (const Ray& ray : rays) {
+          const std::optional<Hit> hit = bvh.intersect(ray);
+          if (!hit) continue;
+          const std::string where = named.name + " " + layout + " " + isa + " " + format_ray(ray);
+          if (scene.geometry.is_sphere(hit->geom_id)) {
+            EXPECT_EQ(hit->vertex_lanes, nullptr) << where;
+            continue;
+          }
+          ++triangle_hits;
+          ASSERT_NE(hit->vertex_lanes, nullptr) << where;
+          const TriangleMesh& mesh = scene.geometry.meshes[hit->geom_id];
+          const glm::uvec3 tri = mesh.triangles[hit->prim_id];
+          for (int k = 0; k < 3; ++k) {
+            for (int a = 0; a < 3; ++a) {
+              ASSERT_TRUE(same_bits(hit->vertex_lanes[4 * (3 * k + a)], mesh.positions[tri[k]][a]))
+                  << where << " corner " << k << " axis " << a;
+            }
+          }
+          Hit from_mesh = *hit;
+          from_mesh.vertex_lanes = nullptr;
+          const SurfaceInteraction fast = scene.surface_at(ray, *hit);
+          const SurfaceInteraction slow = scene.surface_at(ray, from_mesh);
+          for (int a = 0; a < 3; ++a) {
+            ASSERT_TRUE(same_bits(fast.position[a], slow.position[a])) << where;
+            ASSERT_TRUE(same_bits(fast.position_error[a], slow.position_error[a])) << where;
+            ASSERT_TRUE(same_bits(fast.geometric_normal[a], slow.geometric_normal[a])) << where;
+            ASSERT_TRUE(same_bits(fast.shading_normal[a], slow.shading_normal[a])) << where;
+          }
+          ASSERT_TRUE(same_bits(fast.uv.x, slow.uv.x) && same_bits(fast.uv.y, slow.uv.y)) << where;
+        }
+        EXPECT_GT(triangle_hits, 20u) << named.name << " " << layout << " " << isa;
       }
     }
   }

@@ -159,7 +159,7 @@ std::optional<Hit> WideBvhAccelerator::intersect_prepared(const Ray& ray) const 
   if (empty_) return std::nullopt;
   WideHit hit = kNoWideHit;
   if (!intersect_fn_(view_, ray, hit)) return std::nullopt;
-  return Hit{hit.t, hit.u, hit.v, hit.geom_id, hit.prim_id};
+  return Hit{hit.t, hit.u, hit.v, hit.geom_id, hit.prim_id, hit.vertex_lanes};
 }
 
 bool WideBvhAccelerator::occluded_prepared(const Ray& ray) const {

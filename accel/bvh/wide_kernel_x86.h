@@ -407,6 +407,7 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
   }
   auto geom = [&](int lane) { return blocks[lane >> 2]->geom_id[lane & 3]; };
   auto prim = [&](int lane) { return blocks[lane >> 2]->prim_id[lane & 3]; };
+  auto vertices = [&](int lane) { return &blocks[lane >> 2]->p[0][0][lane & 3]; };
   // The lanes the ray passes through take t, u, v in double precision, four lanes at a time, as
   // intersect_triangle() does one; lanes with a zero edge function take the whole scalar test.
   // Either way the bits are brute force's.
@@ -422,7 +423,7 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
       if (!any_hit && !comes_before_hit(lane_t[lane], geom(lane), prim(lane), hit)) continue;
       if (any_hit) return true;
       tmax = lane_t[lane];
-      hit = {lane_t[lane], lane_u[lane], lane_v[lane], geom(lane), prim(lane)};
+      hit = {lane_t[lane], lane_u[lane], lane_v[lane], geom(lane), prim(lane), vertices(lane)};
       found = true;
     }
   }
@@ -433,7 +434,7 @@ PRISM_KERNEL_INLINE bool intersect_triangles(const TriangleBlock* const* blocks,
     if (any_hit) return true;
     if (!comes_before_hit(h.t, geom(lane), prim(lane), hit)) continue;
     tmax = h.t;
-    hit = {h.t, h.u, h.v, geom(lane), prim(lane)};
+    hit = {h.t, h.u, h.v, geom(lane), prim(lane), vertices(lane)};
     found = true;
   }
   return found;

@@ -18,8 +18,9 @@ namespace prism {
 struct WideHit {
   float t, u, v;
   uint32_t geom_id, prim_id;
+  const float* vertex_lanes;  ///< Hit::vertex_lanes: &block.p[0][0][lane] of a triangle
 };
-inline constexpr WideHit kNoWideHit{kInfinity, 0.0f, 0.0f, ~0u, ~0u};
+inline constexpr WideHit kNoWideHit{kInfinity, 0.0f, 0.0f, ~0u, ~0u, nullptr};
 
 /// What a kernel reads: one W-wide tree (nodes points at WideNode<W>) and the scene's spheres.
 struct WideBvhView {

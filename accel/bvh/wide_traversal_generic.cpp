@@ -109,7 +109,7 @@ PRISM_KERNEL_INLINE bool intersect_blocks(const TriangleBlock* blocks, uint32_t 
       if (any_hit) return true;
       if (!comes_before_hit(h.t, block.geom_id[lane], block.prim_id[lane], hit)) continue;
       tmax = h.t;
-      hit = {h.t, h.u, h.v, block.geom_id[lane], block.prim_id[lane]};
+      hit = {h.t, h.u, h.v, block.geom_id[lane], block.prim_id[lane], &block.p[0][0][lane]};
       found = true;
     }
   }
