@@ -270,6 +270,8 @@ std::optional<std::array<float, 8>> ColorPipeline::output_chromaticities() const
   return impl_->chromaticities;
 }
 
+bool ColorPipeline::converts_to_output() const { return impl_->to_output != nullptr; }
+
 void ColorPipeline::working_to_output(Image& image) const {
   PRISM_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels());
   if (!impl_->to_output) return;

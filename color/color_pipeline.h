@@ -58,6 +58,9 @@ class ColorPipeline {
   /// the output space, in place, and likewise every colour AOV ("albedo.R/G/B", see
   /// is_color_layer); other channels (AOVs that are data) are left alone.
   void working_to_output(Image& image) const;
+  /// Whether working_to_output() changes any value (false when the output space is the working
+  /// space).
+  bool converts_to_output() const;
   /// Converts the beauty and every colour AOV of an image (as working_to_output selects them)
   /// from the colour space `from` (name, alias or role) to the working space, in place; data
   /// channels are left alone. For images read back from files (`prism convert`). Throws

@@ -42,6 +42,10 @@ void write_atomically(const std::filesystem::path& target, const std::string& fo
 /// The header and float pixels of the scene-linear EXR of `image`, as write_exr writes it.
 struct ExrImage {
   OIIO::ImageSpec spec;
+  /// The interleaved pixels, in the file's channel order: `pixels` when the file's differ from
+  /// the image's (reordered, converted to the output space or clamped to the half range), else
+  /// the image's own, which must then outlive this.
+  const float* data = nullptr;
   ImagePixels pixels;  ///< huge pages, as the image's own (core/huge_page_allocator.h)
 };
 ExrImage prepare_exr(const std::filesystem::path& path, const Image& image,

@@ -62,7 +62,7 @@ void write_state_file(const fs::path& path, const Image& image, const Film& film
   first.attribute("name", "rgba");
   color_detail::write_atomically(
       path, "openexr",
-      {color_detail::Subimage{first, OIIO::TypeDesc::FLOAT, exr.pixels.data()},
+      {color_detail::Subimage{first, OIIO::TypeDesc::FLOAT, exr.data},
        color_detail::Subimage{state, OIIO::TypeDesc::UINT32, film.pixels().data()}});
 }
 
