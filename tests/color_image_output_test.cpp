@@ -220,6 +220,25 @@ TEST_F(ColorImageOutput, HalfClampsOverflowVisiblyAndFloatKeepsIt) {
   const ImageFileContents full = read_image_file(dir_ / "float.exr");
   EXPECT_EQ(full.image.at(0, 0, 0), 1e6f);
   EXPECT_EQ(full.attribute("prism:halfClampedValues"), "");
+
+  // Channels already in the file's order (R, G, B, A): the writer uses the image's own pixels
+  // when nothing changes them, and must still see the value to clamp, in a copy.
+  Image rgba;
+  rgba.width = 2;
+  rgba.height = 1;
+  rgba.channel_names = {"R", "G", "B", "A"};
+  rgba.pixels = {0.25f, 0.5f, 0.75f, 1.0f, 1.0f, 2.0f, -3e5f, 0.5f};
+  const ImagePixels before = rgba.pixels;
+  write_exr(dir_ / "rgba_half.exr", rgba, {}, pipeline);
+  const ImageFileContents rgba_half = read_image_file(dir_ / "rgba_half.exr");
+  EXPECT_EQ(rgba_half.image.at(1, 0, 2), -65504.0f);
+  EXPECT_EQ(rgba_half.image.at(0, 0, 1), 0.5f);
+  EXPECT_EQ(rgba_half.attribute("prism:halfClampedValues"), "1");
+  EXPECT_TRUE(rgba.pixels == before) << "the image itself was changed";
+  write_exr(dir_ / "rgba_float.exr", rgba, {}, pipeline, ExrOptions{"float", "zip"});
+  const ImageFileContents rgba_float = read_image_file(dir_ / "rgba_float.exr");
+  ASSERT_EQ(rgba_float.image.pixels.size(), before.size());
+  for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(rgba_float.image.pixels[i], before[i]) << i;
 }
 
 TEST_F(ColorImageOutput, MissingFolderIsAnOutputErrorAndLeavesNoFile) {
