@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -128,6 +129,47 @@ double sampled_albedo(const Bsdf& bsdf, const Vec3& wo, uint32_t n, uint64_t see
   }
   if (max_weight) *max_weight = largest;
   return sum / n;
+}
+
+// The diffuse lobe's directions: the concentric disk point lifted to the hemisphere, its height
+// taken from the map's radius (square_to_cosine_hemisphere()). Known points in each wedge and on
+// the diagonals between them, the same disk point as square_to_uniform_disk(), unit length, and
+// no jump across a wedge boundary.
+TEST(IntegratorsBsdf, CosineHemisphereLiftsTheConcentricDisk) {
+  const float h = std::sqrt(0.75f), d = 0.5f * std::sqrt(0.5f);
+  const struct {
+    Vec2 u;
+    Vec3 expected;
+  } known[] = {{{0.5f, 0.5f}, {0.0f, 0.0f, 1.0f}},   {{0.75f, 0.5f}, {0.5f, 0.0f, h}},
+               {{0.25f, 0.5f}, {-0.5f, 0.0f, h}},    {{0.5f, 0.75f}, {0.0f, 0.5f, h}},
+               {{0.5f, 0.25f}, {0.0f, -0.5f, h}},    {{0.75f, 0.75f}, {d, d, h}},
+               {{0.25f, 0.75f}, {-d, d, h}},          {{0.25f, 0.25f}, {-d, -d, h}},
+               {{0.75f, 0.25f}, {d, -d, h}},          {{1.0f, 0.5f}, {1.0f, 0.0f, 0.0f}},
+               {{0.75f, 0.625f}, {0.5f * std::cos(kPi / 8.0f), 0.5f * std::sin(kPi / 8.0f), h}}};
+  for (const auto& k : known) {
+    const Vec3 w = square_to_cosine_hemisphere(k.u);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(w[a], k.expected[a], 2e-6f) << "u " << k.u.x << " " << k.u.y << " axis " << a;
+    }
+  }
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (int i = 0; i < 100000; ++i) {
+    const Vec2 u(uniform(rng), uniform(rng));
+    const Vec3 w = square_to_cosine_hemisphere(u);
+    const Vec2 disk = square_to_uniform_disk(u);
+    ASSERT_EQ(w.x, disk.x);
+    ASSERT_EQ(w.y, disk.y);
+    ASSERT_GE(w.z, 0.0f);
+    ASSERT_NEAR(glm::length(w), 1.0f, 2e-6f) << "u " << u.x << " " << u.y;
+  }
+  // Across the diagonal between two wedges, which the map decides by comparing |o.x| and |o.y|.
+  for (int i = 1; i < 100; ++i) {
+    const float t = 0.5f + 0.5f * float(i) / 100.0f;
+    const Vec3 below = square_to_cosine_hemisphere({t, std::nextafter(t, 0.0f)});
+    const Vec3 above = square_to_cosine_hemisphere({t, std::nextafter(t, 1.0f)});
+    EXPECT_LT(glm::length(above - below), 1e-5f) << "t " << t;
+  }
 }
 
 TEST(IntegratorsBsdf, WhiteFurnaceLosslessBsdfs) {

@@ -21,24 +21,36 @@ Vec2 cos_sin_quarter_turn(float x) {
   return {c, s};
 }
 
-}  // namespace
+/// Shirley and Chiu's concentric map of u in [0,1)^2 to the unit disk, with the point's signed
+/// radius (its distance from the centre, up to sign), which the map knows before the point: the
+/// angle is pi / 4 * o.y / o.x from the x axis in the wedges around it (radius o.x), pi / 2 -
+/// pi / 4 * o.x / o.y in those around the y axis (radius o.y; the cosine and sine are then the
+/// sine and cosine of pi / 4 * o.x / o.y). The wedge is chosen by selects, not a branch: it
+/// depends on the sample value alone, which the processor cannot predict.
+struct ConcentricPoint {
+  Vec2 point;
+  float radius;
+};
 
-Vec2 square_to_uniform_disk(Vec2 u) {
+ConcentricPoint concentric_map(Vec2 u) {
   const Vec2 o = 2.0f * u - Vec2(1.0f);
-  if (o.x == 0.0f && o.y == 0.0f) return Vec2(0.0f);
-  // Shirley and Chiu's concentric map: the angle is pi / 4 * o.y / o.x from the x axis in the
-  // wedges around it, pi / 2 - pi / 4 * o.x / o.y in those around the y axis (whose cosine
-  // and sine are the sine and cosine of pi / 4 * o.x / o.y).
-  if (std::abs(o.x) > std::abs(o.y)) {
-    return o.x * cos_sin_quarter_turn((kPi / 4.0f) * (o.y / o.x));
-  }
-  const Vec2 cs = cos_sin_quarter_turn((kPi / 4.0f) * (o.x / o.y));
-  return o.y * Vec2(cs.y, cs.x);
+  const bool around_x = std::abs(o.x) > std::abs(o.y);
+  const float radius = around_x ? o.x : o.y;
+  const float across = around_x ? o.y : o.x;
+  if (radius == 0.0f) return {Vec2(0.0f), 0.0f};  // the centre: o.x = o.y = 0
+  const Vec2 cs = cos_sin_quarter_turn((kPi / 4.0f) * (across / radius));
+  return {radius * (around_x ? cs : Vec2(cs.y, cs.x)), radius};
 }
 
+}  // namespace
+
+Vec2 square_to_uniform_disk(Vec2 u) { return concentric_map(u).point; }
+
 Vec3 square_to_cosine_hemisphere(Vec2 u) {
-  const Vec2 d = square_to_uniform_disk(u);
-  return {d.x, d.y, safe_sqrt(1.0f - d.x * d.x - d.y * d.y)};
+  // The height from the radius, not from the point's coordinates: its square root then runs
+  // beside the division and the polynomials instead of after them.
+  const ConcentricPoint c = concentric_map(u);
+  return {c.point.x, c.point.y, safe_sqrt(1.0f - c.radius * c.radius)};
 }
 
 Vec3 square_to_uniform_hemisphere(Vec2 u) {
