@@ -140,11 +140,16 @@ TEST(IntegratorsBsdf, CosineHemisphereLiftsTheConcentricDisk) {
   const struct {
     Vec2 u;
     Vec3 expected;
-  } known[] = {{{0.5f, 0.5f}, {0.0f, 0.0f, 1.0f}},   {{0.75f, 0.5f}, {0.5f, 0.0f, h}},
-               {{0.25f, 0.5f}, {-0.5f, 0.0f, h}},    {{0.5f, 0.75f}, {0.0f, 0.5f, h}},
-               {{0.5f, 0.25f}, {0.0f, -0.5f, h}},    {{0.75f, 0.75f}, {d, d, h}},
-               {{0.25f, 0.75f}, {-d, d, h}},          {{0.25f, 0.25f}, {-d, -d, h}},
-               {{0.75f, 0.25f}, {d, -d, h}},          {{1.0f, 0.5f}, {1.0f, 0.0f, 0.0f}},
+  } known[] = {{{0.5f, 0.5f}, {0.0f, 0.0f, 1.0f}},
+               {{0.75f, 0.5f}, {0.5f, 0.0f, h}},
+               {{0.25f, 0.5f}, {-0.5f, 0.0f, h}},
+               {{0.5f, 0.75f}, {0.0f, 0.5f, h}},
+               {{0.5f, 0.25f}, {0.0f, -0.5f, h}},
+               {{0.75f, 0.75f}, {d, d, h}},
+               {{0.25f, 0.75f}, {-d, d, h}},
+               {{0.25f, 0.25f}, {-d, -d, h}},
+               {{0.75f, 0.25f}, {d, -d, h}},
+               {{1.0f, 0.5f}, {1.0f, 0.0f, 0.0f}},
                {{0.75f, 0.625f}, {0.5f * std::cos(kPi / 8.0f), 0.5f * std::sin(kPi / 8.0f), h}}};
   for (const auto& k : known) {
     const Vec3 w = square_to_cosine_hemisphere(k.u);
