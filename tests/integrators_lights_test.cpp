@@ -174,9 +174,11 @@ void expect_emission_samples(const LightSource& light, FrontNormal front, double
   double cos_sum = 0.0;
   int front_count = 0, missing = 0;
   for (int i = 0; i < n; ++i) {
-    const Vec2 u_point((float(i) + 0.5f) / float(n), std::fmod(0.618034f * float(i), 1.0f));
-    const Vec2 u_direction(std::fmod(0.754878f * float(i), 1.0f),
-                           std::fmod(0.569840f * float(i), 1.0f));
+    // The fractional parts in double: in float they fall on multiples of 2^-10 for large i, and
+    // one in a thousand is exactly 0, whose direction (on the disk's rim) is exactly grazing.
+    const Vec2 u_point((float(i) + 0.5f) / float(n), float(std::fmod(0.618034 * i, 1.0)));
+    const Vec2 u_direction(float(std::fmod(0.754878 * i, 1.0)),
+                           float(std::fmod(0.569840 * i, 1.0)));
     const std::optional<LightLeSample> s = light.sample_le(u_point, u_direction);
     if (!s) {
       ++missing;  // grazing directions are dropped
