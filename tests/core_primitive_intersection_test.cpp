@@ -422,5 +422,64 @@ TEST(CorePrimitiveIntersection, SmallDistantSphereIsHitAccurately) {
   EXPECT_FALSE(intersect_sphere(make_ray({0.0101f, 0.0f, 0.0f}, {0, 0, 1}), centre, radius));
 }
 
+TEST(CorePrimitiveIntersection, ObliqueRaysAtADistantSphereAgreeWithDouble) {
+  // Rays from around the origin toward points near a small sphere 1e4 away, in no axis's
+  // direction: hit or miss and t as a double-precision solution says, away from the silhouette.
+  const DVec3 centre(3e3, -4e3, 8.5e3);
+  const double radius = 0.5;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int hits = 0, misses = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const DVec3 origin(unit(rng), unit(rng), unit(rng));
+    const DVec3 aim = centre + 1.5 * radius * DVec3(unit(rng), unit(rng), unit(rng));
+    const Vec3 direction(glm::normalize(aim - origin));
+    const Vec3 o(origin);
+    // The exact line of the float ray, solved in double.
+    const DVec3 d(direction), f = DVec3(o) - centre;
+    const double a = glm::dot(d, d), half_b = glm::dot(f, d);
+    const double distance2 = glm::dot(glm::cross(f, d), glm::cross(f, d)) / a;
+    const auto hit = intersect_sphere(make_ray(o, direction), Vec3(centre), float(radius));
+    // Within 1% of the radius of the silhouette either way is too close to call in float.
+    if (std::abs(std::sqrt(distance2) - radius) < 0.01 * radius) continue;
+    if (distance2 > radius * radius) {
+      EXPECT_FALSE(hit) << i;
+      ++misses;
+      continue;
+    }
+    ASSERT_TRUE(hit) << i;
+    const double t = (-half_b - std::sqrt(radius * radius - distance2) * std::sqrt(a)) / a;
+    // A few float roundings of t (its ulp here is about 1e-3).
+    EXPECT_NEAR(hit->t, t, 8.0 * t * 0x1p-24) << i;
+    ++hits;
+  }
+  EXPECT_GT(hits, 200);
+  EXPECT_GT(misses, 200);
+}
+
+TEST(CorePrimitiveIntersection, SphereUvAreTheAnglesOfTheHitPoint) {
+  // u = phi / 2pi in [0, 1), v = theta / pi, against libm in double, all around the sphere.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 toward = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+    const Vec3 origin = kCentre + 3.0f * toward;
+    const Vec3 aim = kCentre + 0.5f * Vec3(unit(rng), unit(rng), unit(rng));
+    const Ray ray = make_ray(origin, glm::normalize(aim - origin));
+    const auto hit = intersect_sphere(ray, kCentre, 1.0f);
+    ASSERT_TRUE(hit) << i;
+    const DVec3 local = DVec3(ray.at(hit->t)) - DVec3(kCentre);
+    double phi = std::atan2(local.y, local.x);
+    if (phi < 0.0) phi += 2.0 * M_PI;
+    const double theta = std::acos(std::clamp(local.z / glm::length(local), -1.0, 1.0));
+    EXPECT_GE(hit->u, 0.0f);
+    EXPECT_LE(hit->u, 1.0f);
+    // Where phi wraps (y just below 0 about x > 0), 1 and 0 are the same place.
+    const double du = std::abs(hit->u - phi / (2.0 * M_PI));
+    EXPECT_LT(std::min(du, 1.0 - du), 1e-6) << i;
+    EXPECT_NEAR(hit->v, theta / M_PI, 1e-6) << i;
+  }
+}
+
 }  // namespace
 }  // namespace prism

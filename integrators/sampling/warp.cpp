@@ -82,29 +82,6 @@ float power_heuristic(float nf, float f_pdf, float ng, float g_pdf) {
   return 1.0f / (1.0f + r * r);
 }
 
-float atan2_nonnegative_y(float y, float x) {
-  if (std::isnan(x) || std::isnan(y)) return std::numeric_limits<float>::quiet_NaN();
-  const float ax = std::abs(x);
-  const float low = std::min(ax, y), high = std::max(ax, y);
-  if (!(high > 0.0f)) return 0.0f;
-  // atan(a) = a P(a^2) on [0, 1]: degree 8 in a^2, fitted by iterated weighted least squares to
-  // the minimax error, 1e-7 evaluated in float.
-  const float a = low / high;
-  const float z = a * a;
-  const float p =
-      0.99999988f +
-      z * (-0.33332598f +
-           z * (0.19985907f +
-                z * (-0.14161229f +
-                     z * (0.10498944f +
-                          z * (-0.07234853f +
-                               z * (0.03978117f + z * (-0.01440132f + z * 0.00245672f)))))));
-  float r = a * p;
-  if (y > ax) r = 0.5f * kPi - r;
-  if (x < 0.0f) r = kPi - r;
-  return r;
-}
-
 float triangle_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   const float la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
   const float numerator = std::abs(glm::dot(a, glm::cross(b, c)));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/angles.h"  // atan2_nonnegative_y(), for the solid angles here
 #include "core/math.h"
 
 namespace prism {
@@ -37,12 +38,6 @@ inline float uniform_sphere_pdf() { return kInv4Pi; }
 /// Barycentric coordinates (b1, b2) of a point uniform in area on a triangle:
 /// p = (1 - b1 - b2) p0 + b1 p1 + b2 p2.
 Vec2 square_to_uniform_triangle(Vec2 u);
-
-/// atan2(y, x) for y >= 0, in [0, pi], within 2.5e-7 of std::atan2 (a polynomial on [0, 1]
-/// fitted for single precision, then the octant folded back), for the solid angles light
-/// sampling computes at every vertex: 71 instructions per camera sample fewer than with libm's
-/// on CBspheres_lambertian (docs/PERFORMANCE.md, fifth round). NaN when an input is NaN.
-float atan2_nonnegative_y(float y, float x);
 
 /// Solid angle that the triangle (a, b, c), given relative to the viewpoint, subtends there
 /// (Van Oosterom and Strackee 1983): in [0, 2 pi), 0 for a degenerate triangle or one seen
