@@ -62,44 +62,10 @@ ShadingPoint::ShadingPoint(const SurfaceInteraction& si_in, const Ray& ray, cons
       wo_world(-glm::normalize(ray.direction)),
       wo(frame.to_local(wo_world)) {}
 
-namespace {
-
-/// Whether the world-space pair (wo, wi) is a reflection with respect to the geometric normal
-/// and agrees with the same classification in the shading frame.
-bool sides_agree(const ShadingPoint& sp, const Vec3& wi_world, const Vec3& wi_local) {
-  const float geometric =
-      glm::dot(sp.wo_world, sp.si.geometric_normal) * glm::dot(wi_world, sp.si.geometric_normal);
-  const float shading = sp.wo.z * wi_local.z;
-  return (geometric > 0.0f) == (shading > 0.0f) && geometric != 0.0f && shading != 0.0f;
-}
-
-}  // namespace
-
-Rgb ShadingPoint::eval_cos(const Vec3& wi_world) const {
-  const Vec3 wi = frame.to_local(wi_world);
-  if (!sides_agree(*this, wi_world, wi)) return Rgb(0.0f);
-  return bsdf->eval(wo, wi) * std::abs(wi.z);
-}
-
-float ShadingPoint::pdf(const Vec3& wi_world) const {
-  const Vec3 wi = frame.to_local(wi_world);
-  if (!sides_agree(*this, wi_world, wi)) return 0.0f;
-  return bsdf->pdf(wo, wi);
-}
-
 float ShadingPoint::lobe_sample(Sampler& sampler) const {
   if (bsdf->reads_lobe_sample()) return sampler.get_1d();
   sampler.skip_dimensions(1);
   return 0.0f;
-}
-
-std::optional<BsdfSample> ShadingPoint::sample(float u_lobe, Vec2 u) const {
-  std::optional<BsdfSample> s = bsdf->sample(wo, u_lobe, u);
-  if (!s || !(s->pdf > 0.0f)) return std::nullopt;
-  const Vec3 wi_world = glm::normalize(frame.to_world(s->wi));
-  if (!sides_agree(*this, wi_world, s->wi)) return std::nullopt;
-  s->wi = wi_world;
-  return s;
 }
 
 Ray ShadingPoint::spawn(const Vec3& wi_world) const { return spawn_ray(si, wi_world); }

@@ -7,6 +7,7 @@
 #include "core/param_set.h"
 #include "integrators/bsdf/bsdf.h"
 #include "integrators/bsdf/bsdf_factory.h"
+#include "integrators/bsdf/diffuse_bsdf.h"
 #include "integrators/integrator.h"
 #include "integrators/integrator_defaults.h"
 #include "integrators/lights/light_set.h"
@@ -69,12 +70,18 @@ struct ShadingPoint {
   Vec3 wo_world;  ///< unit, toward the previous vertex
   Vec3 wo;        ///< wo_world in the shading frame
 
+  // eval_cos(), pdf() and sample() run at every vertex of every path: defined below, inline,
+  // and with the Lambertian BSDF's functions inline too (as_diffuse()), not by virtual calls.
+
   /// f(wo, wi) |cos theta_i| for a unit world direction wi (0 where the leak check fails).
   Rgb eval_cos(const Vec3& wi_world) const;
   /// BSDF sampling density of the unit world direction wi.
   float pdf(const Vec3& wi_world) const;
   /// A BSDF sample with wi in world space; nothing when it fails or fails the leak check.
   std::optional<BsdfSample> sample(float u_lobe, Vec2 u) const;
+  /// Whether the world-space pair (wo, wi) is a reflection with respect to the geometric normal
+  /// and agrees with the same classification in the shading frame (wi_local: wi_world there).
+  bool sides_agree(const Vec3& wi_world, const Vec3& wi_local) const;
   /// The next value of `sampler` for sample()'s u_lobe when the BSDF reads it; otherwise its
   /// dimension is skipped, not computed (later dimensions keep their values) and 0 returned.
   float lobe_sample(Sampler& sampler) const;
@@ -84,6 +91,50 @@ struct ShadingPoint {
   /// escapes the scene).
   bool unoccluded(const Accelerator& accel, const Vec3& wi_world, float distance) const;
 };
+
+inline bool ShadingPoint::sides_agree(const Vec3& wi_world, const Vec3& wi_local) const {
+  const float geometric =
+      glm::dot(wo_world, si.geometric_normal) * glm::dot(wi_world, si.geometric_normal);
+  const float shading = wo.z * wi_local.z;
+  return (geometric > 0.0f) == (shading > 0.0f) && geometric != 0.0f && shading != 0.0f;
+}
+
+inline Rgb ShadingPoint::eval_cos(const Vec3& wi_world) const {
+  const Vec3 wi = frame.to_local(wi_world);
+  if (!sides_agree(wi_world, wi)) return Rgb(0.0f);
+  const DiffuseBsdf* diffuse = as_diffuse(*bsdf);
+  return (diffuse ? diffuse->eval(wo, wi) : bsdf->eval(wo, wi)) * std::abs(wi.z);
+}
+
+inline float ShadingPoint::pdf(const Vec3& wi_world) const {
+  const Vec3 wi = frame.to_local(wi_world);
+  if (!sides_agree(wi_world, wi)) return 0.0f;
+  const DiffuseBsdf* diffuse = as_diffuse(*bsdf);
+  return diffuse ? diffuse->pdf(wo, wi) : bsdf->pdf(wo, wi);
+}
+
+inline std::optional<BsdfSample> ShadingPoint::sample(float u_lobe, Vec2 u) const {
+  // One object returned on every path (built where the caller wants it), filled field by field:
+  // a copy of `s` with wi replaced is made in 16-byte blocks straight after the new wi is stored
+  // in pieces, and each such load would wait until the stores it spans have reached the cache
+  // (no store-to-load forwarding).
+  std::optional<BsdfSample> out;
+  const DiffuseBsdf* diffuse = as_diffuse(*bsdf);
+  const std::optional<BsdfSample> s =
+      diffuse ? diffuse->sample(wo, u_lobe, u) : bsdf->sample(wo, u_lobe, u);
+  if (s && s->pdf > 0.0f) {
+    const Vec3 wi_world = glm::normalize(frame.to_world(s->wi));
+    if (sides_agree(wi_world, s->wi)) {
+      out.emplace();
+      out->f = s->f;
+      out->wi = wi_world;
+      out->pdf = s->pdf;
+      out->lobe = s->lobe;
+      out->eta = s->eta;
+    }
+  }
+  return out;
+}
 
 /// Light arriving at `sp` directly from the lights, by light importance sampling: every light,
 /// `light_samples` samples for each non-delta light and one for each delta light.

@@ -16,6 +16,7 @@
 #include "integrators/bsdf/glass_bsdf.h"
 #include "integrators/bsdf/microfacet_bsdf.h"
 #include "integrators/bsdf/mirror_bsdf.h"
+#include "integrators/light_transport.h"
 #include "integrators/sampling/warp.h"
 #include "tests/support/chi_square.h"
 
@@ -350,10 +351,66 @@ TEST(IntegratorsBsdf, FactoryBuildsEveryMaterialType) {
                                  t == MaterialType::kRefraction);
     const Rgb a = material_albedo(m);
     EXPECT_EQ(a, b->albedo());
+    // Shading takes the Lambertian BSDF's functions inline by its kind tag: the tag must name
+    // the class, or a static_cast would read another class as a DiffuseBsdf.
+    EXPECT_EQ(as_diffuse(*b) != nullptr, dynamic_cast<const DiffuseBsdf*>(b.get()) != nullptr);
+    EXPECT_EQ(as_diffuse(*b) != nullptr, t == MaterialType::kDiffuse);
   }
   m.type = MaterialType::kGlass;
   m.ior = -1.0f;
   EXPECT_THROW(make_bsdf(m), Error);
+}
+
+/// The Lambertian BSDF behind a BSDF of another kind: ShadingPoint reaches it by virtual calls.
+class DiffuseByVirtualCalls final : public Bsdf {
+ public:
+  explicit DiffuseByVirtualCalls(const Rgb& r)
+      : Bsdf(kLobeReflection | kLobeDiffuse, false), diffuse_(r) {}
+  Rgb eval(const Vec3& wo, const Vec3& wi) const override { return inner().eval(wo, wi); }
+  std::optional<BsdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const override {
+    return inner().sample(wo, u_lobe, u);
+  }
+  float pdf(const Vec3& wo, const Vec3& wi) const override { return inner().pdf(wo, wi); }
+  Rgb albedo() const override { return inner().albedo(); }
+
+ private:
+  const Bsdf& inner() const { return diffuse_; }
+  DiffuseBsdf diffuse_;
+};
+
+TEST(IntegratorsBsdf, ShadingPointTakesTheLambertianBsdfInlineWithTheSameResults) {
+  const DiffuseBsdf inline_diffuse(Rgb(0.6f, 0.5f, 0.4f));
+  const DiffuseByVirtualCalls virtual_diffuse(Rgb(0.6f, 0.5f, 0.4f));
+  ASSERT_TRUE(as_diffuse(inline_diffuse));
+  ASSERT_FALSE(as_diffuse(virtual_diffuse));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int i = 0; i < 2000; ++i) {
+    SurfaceInteraction si;
+    si.position = Vec3(unit(rng), unit(rng), unit(rng));
+    si.shading_normal = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+    // Geometric normal near the shading one, on its side.
+    si.geometric_normal = glm::normalize(si.shading_normal + 0.2f * Vec3(unit(rng), unit(rng), 0));
+    Ray ray;
+    ray.origin = si.position + glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+    ray.direction = si.position - ray.origin;
+    const ShadingPoint fast(si, ray, inline_diffuse);
+    const ShadingPoint slow(si, ray, virtual_diffuse);
+    const Vec2 u(0.5f * (unit(rng) + 1.0f), 0.5f * (unit(rng) + 1.0f));
+    const auto a = fast.sample(0.0f, u);
+    const auto b = slow.sample(0.0f, u);
+    ASSERT_EQ(a.has_value(), b.has_value()) << i;
+    const Vec3 w = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+    EXPECT_EQ(fast.eval_cos(w), slow.eval_cos(w)) << i;
+    EXPECT_EQ(fast.pdf(w), slow.pdf(w)) << i;
+    if (!a) continue;
+    EXPECT_EQ(a->f, b->f);
+    EXPECT_EQ(a->wi, b->wi);
+    EXPECT_EQ(a->pdf, b->pdf);
+    EXPECT_EQ(a->lobe, b->lobe);
+    EXPECT_EQ(a->eta, b->eta);
+    EXPECT_EQ(fast.eval_cos(a->wi), slow.eval_cos(a->wi));
+  }
 }
 
 TEST(IntegratorsBsdf, OnlyBsdfsThatReadTheLobeSampleSayTheyDo) {

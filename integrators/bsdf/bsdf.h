@@ -40,6 +40,10 @@ struct BsdfSample {
 /// 1 / eta^2 scaling of transmitted radiance is included). Immutable and thread-safe.
 class Bsdf {
  public:
+  /// Which BSDF this is, where callers take one kind's functions inline (ShadingPoint does for
+  /// the Lambertian BSDF of most surfaces, without a virtual call at every bounce).
+  enum class Kind : uint8_t { kDiffuse, kOther };
+
   virtual ~Bsdf() = default;
   /// f(wo, wi) of the non-delta lobes; zero for delta lobes and impossible pairs.
   virtual Rgb eval(const Vec3& wo, const Vec3& wi) const = 0;
@@ -49,11 +53,12 @@ class Bsdf {
   virtual std::optional<BsdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const = 0;
   /// Solid-angle density with which sample() draws wi given wo (non-delta lobes only).
   virtual float pdf(const Vec3& wo, const Vec3& wi) const = 0;
-  /// The lobes present.
-  virtual uint32_t lobes() const = 0;
+  /// The lobes present. Fixed per BSDF (a member, not a virtual call: paths ask at every bounce).
+  uint32_t lobes() const { return lobes_; }
   /// Whether sample() reads `u_lobe` (a choice between lobes). When it does not, a caller may
   /// skip that sampler dimension instead of computing a value nobody reads.
-  virtual bool reads_lobe_sample() const { return true; }
+  bool reads_lobe_sample() const { return reads_lobe_sample_; }
+  Kind kind() const { return kind_; }
   /// A colour in [0,1]^3 that describes the surface (the albedo AOV).
   virtual Rgb albedo() const = 0;
 
@@ -64,6 +69,15 @@ class Bsdf {
   }
   /// True when there is no scattering at all (emitters).
   bool is_black() const { return lobes() == kLobeNone; }
+
+ protected:
+  Bsdf(uint32_t lobes, bool reads_lobe_sample, Kind kind = Kind::kOther)
+      : lobes_(lobes), reads_lobe_sample_(reads_lobe_sample), kind_(kind) {}
+
+ private:
+  uint32_t lobes_;
+  bool reads_lobe_sample_;
+  Kind kind_;
 };
 
 inline bool same_hemisphere(const Vec3& a, const Vec3& b) { return a.z * b.z > 0.0f; }

@@ -22,11 +22,10 @@ struct BsdfOptions {
 /// An emitter's BSDF: it reflects nothing.
 class EmissionBsdf final : public Bsdf {
  public:
+  EmissionBsdf() : Bsdf(kLobeNone, false) {}
   Rgb eval(const Vec3&, const Vec3&) const override { return Rgb(0.0f); }
   std::optional<BsdfSample> sample(const Vec3&, float, Vec2) const override { return std::nullopt; }
   float pdf(const Vec3&, const Vec3&) const override { return 0.0f; }
-  uint32_t lobes() const override { return kLobeNone; }
-  bool reads_lobe_sample() const override { return false; }
   Rgb albedo() const override { return Rgb(0.0f); }
 };
 

@@ -11,11 +11,13 @@ namespace prism {
 class GlassBsdf final : public Bsdf {
  public:
   GlassBsdf(const Rgb& reflectance, const Rgb& transmittance, float ior)
-      : reflectance_(reflectance), transmittance_(transmittance), ior_(ior) {}
+      : Bsdf(kLobeReflection | kLobeTransmission | kLobeSpecular, true),
+        reflectance_(reflectance),
+        transmittance_(transmittance),
+        ior_(ior) {}
   Rgb eval(const Vec3&, const Vec3&) const override { return Rgb(0.0f); }
   std::optional<BsdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const override;
   float pdf(const Vec3&, const Vec3&) const override { return 0.0f; }
-  uint32_t lobes() const override { return kLobeReflection | kLobeTransmission | kLobeSpecular; }
   Rgb albedo() const override { return transmittance_; }
 
  private:
@@ -29,12 +31,11 @@ class GlassBsdf final : public Bsdf {
 /// absorbs. Same frame convention as GlassBsdf.
 class RefractionBsdf final : public Bsdf {
  public:
-  RefractionBsdf(const Rgb& transmittance, float ior) : transmittance_(transmittance), ior_(ior) {}
+  RefractionBsdf(const Rgb& transmittance, float ior)
+      : Bsdf(kLobeTransmission | kLobeSpecular, false), transmittance_(transmittance), ior_(ior) {}
   Rgb eval(const Vec3&, const Vec3&) const override { return Rgb(0.0f); }
   std::optional<BsdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const override;
   float pdf(const Vec3&, const Vec3&) const override { return 0.0f; }
-  uint32_t lobes() const override { return kLobeTransmission | kLobeSpecular; }
-  bool reads_lobe_sample() const override { return false; }
   Rgb albedo() const override { return transmittance_; }
 
  private:

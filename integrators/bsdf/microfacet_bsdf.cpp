@@ -11,7 +11,8 @@ Vec3 to_upper(const Vec3& w, bool flip) { return flip ? Vec3(w.x, w.y, -w.z) : w
 }  // namespace
 
 MicrofacetBsdf::MicrofacetBsdf(const Rgb& eta, const Rgb& k, float alpha, MicrofacetModel model)
-    : eta_(eta),
+    : Bsdf(kLobeReflection | kLobeGlossy, false),
+      eta_(eta),
       k_(k),
       distribution_(model, alpha),
       normal_reflectance_(glm::clamp(fresnel_conductor(1.0f, eta, k), Rgb(0.0f), Rgb(1.0f))) {}

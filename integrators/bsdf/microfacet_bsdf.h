@@ -14,8 +14,6 @@ class MicrofacetBsdf final : public Bsdf {
   Rgb eval(const Vec3& wo, const Vec3& wi) const override;
   std::optional<BsdfSample> sample(const Vec3& wo, float u_lobe, Vec2 u) const override;
   float pdf(const Vec3& wo, const Vec3& wi) const override;
-  uint32_t lobes() const override { return kLobeReflection | kLobeGlossy; }
-  bool reads_lobe_sample() const override { return false; }
   Rgb albedo() const override { return normal_reflectance_; }
 
  private:
