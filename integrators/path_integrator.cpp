@@ -27,20 +27,10 @@ PathIntegrator::Settings::Settings(const ParamSet& params)
 
 namespace {
 
-/// The sampler values of one light sample, in the order sample_lights_mis() draws them.
-struct LightSampleValues {
-  float u_light;  ///< the light's choice (no sampler dimension with a single light)
-  Vec2 u;         ///< the point on it
-};
-
-LightSampleValues draw_light_sample(const ShadingContext& shading, Sampler& sampler) {
-  LightSampleValues values;
-  // With a single light the choice needs no sample value (nor a sampler dimension).
-  values.u_light = shading.lights.size() > 1 ? sampler.get_1d() : 0.0f;
-  // Chained to the pair sampled before it (the direction that led here, or the film position
-  // at the first hit): one stratified point for both (Sampler::get_2d_chained()).
-  values.u = sampler.get_2d_chained();
-  return values;
+/// The sampler value that chooses a light for one light sample (none, and no sampler dimension,
+/// with a single light); the point on it follows (get_2d_chained()).
+float draw_light_choice(const ShadingContext& shading, Sampler& sampler) {
+  return shading.lights.size() > 1 ? sampler.get_1d() : 0.0f;
 }
 
 class PathEstimator final : public PixelEstimator {
@@ -87,8 +77,10 @@ class PathEstimator final : public PixelEstimator {
   /// Light arriving at `sp` from one light chosen by power, MIS-weighted against BSDF
   /// sampling; averaged over light_samples samples.
   Rgb sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const;
-  /// One such sample from its sampler values (draw_light_sample()), as one of light_samples.
-  Rgb light_sample_mis(const ShadingPoint& sp, const LightSampleValues& values) const;
+  /// One such sample from its sampler values (the light's choice, draw_light_choice(), and the
+  /// point on it), as one of light_samples. The values come as scalars, not in a struct: built
+  /// in memory, one would be reloaded in pieces that do not match its stores.
+  Rgb light_sample_mis(const ShadingPoint& sp, float u_light, Vec2 u_point) const;
   /// The path tracing estimate along `camera_ray`; with `traced` (the light-traced sample of this
   /// camera sample's index), the caustics li() leaves to the light tracer are left out and the
   /// first hit connects to one of its caustic vertices.
@@ -113,16 +105,19 @@ class PathEstimator final : public PixelEstimator {
 Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const {
   const int n = std::max(1, settings_.light_transport.light_samples);
   Rgb sum(0.0f);
-  for (int i = 0; i < n; ++i) sum += light_sample_mis(sp, draw_light_sample(shading_, sampler));
+  for (int i = 0; i < n; ++i) {
+    const float u_light = draw_light_choice(shading_, sampler);
+    sum += light_sample_mis(sp, u_light, sampler.get_2d_chained());
+  }
   return sum / float(n);
 }
 
-Rgb PathEstimator::light_sample_mis(const ShadingPoint& sp, const LightSampleValues& values) const {
+Rgb PathEstimator::light_sample_mis(const ShadingPoint& sp, float u_light, Vec2 u_point) const {
   const float n = float(std::max(1, settings_.light_transport.light_samples));
   float pmf = 0.0f;
-  const LightSource* light = shading_.lights.sample(values.u_light, &pmf);
+  const LightSource* light = shading_.lights.sample(u_light, &pmf);
   if (!light || !(pmf > 0.0f)) return Rgb(0.0f);
-  const std::optional<LightLiSample> ls = light->sample_li(sp.si.position, values.u);
+  const std::optional<LightLiSample> ls = light->sample_li(sp.si.position, u_point);
   if (!ls || !(ls->pdf > 0.0f)) return Rgb(0.0f);
   const Rgb f = sp.eval_cos(ls->wi);
   if (max_component(f) <= 0.0f) return Rgb(0.0f);
@@ -256,35 +251,32 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
     if (bounces >= max_depth || bsdf.is_black()) break;
 
     const ShadingPoint sp(si, ray, bsdf);
-    // The next direction, by BSDF sampling; its sampler values follow the light sample's.
-    std::optional<BsdfSample> bs;
-    bool bsdf_sampled = false;
-    const auto sample_bsdf = [&] {
-      const float u_lobe = sp.lobe_sample(sampler);
-      // The first vertex's direction begins a fresh point (chained to the film position it
-      // measured worse: relMSE +12% on CBbunny); later ones continue the path's chain.
-      bs = sp.sample(u_lobe, bounces == 0 ? sampler.get_2d() : sampler.get_2d_chained());
-      bsdf_sampled = true;
-    };
-    if (!bsdf.is_delta() && (accumulate || bounces + 1 == max_depth)) {
-      Rgb direct;
-      // The caustic vertex the first hit connects to, chosen first so that it loads meanwhile.
-      // Made with probability caustic_connections: the same sampler value decides and, rescaled,
-      // chooses the vertex.
-      const CausticVertex* vertex = nullptr;
+    // Light sampling (next-event estimation) at this vertex, then the next direction by BSDF
+    // sampling, whose sampler values follow the light sample's.
+    const bool nee = !bsdf.is_delta() && (accumulate || bounces + 1 == max_depth);
+    // One light sample (the default): its values drawn, then the BSDF sample taken before the
+    // light's is evaluated, so that the two chains of dependent square roots and divisions
+    // overlap in the processor instead of the BSDF's waiting for the shadow ray. The same values
+    // and operations: the same image.
+    const bool one_light_sample = nee && settings_.mis && light_samples <= 1;
+    Rgb direct(0.0f);
+    float u_light = 0.0f;
+    Vec2 u_light_point(0.0f);
+    // The caustic vertex the first hit connects to, chosen first so that it loads meanwhile.
+    // Made with probability caustic_connections: the same sampler value decides and, rescaled,
+    // chooses the vertex.
+    const CausticVertex* vertex = nullptr;
+    if (nee) {
       if (traced && first_hit_bounces < 0) {
         const float u = sampler.get_1d();
         const float p = settings_.caustic_connections;
         if (u < p) vertex = traced->choose_vertex(std::min(u / p, 0x1.fffffep-1f));
       }
-      if (settings_.mis && light_samples <= 1) {
-        // One light sample (the default): its values drawn, then the BSDF sample taken before
-        // the light's, so that the two chains of dependent square roots and divisions overlap
-        // in the processor instead of the BSDF's waiting for the shadow ray. The same values
-        // and operations: the same image.
-        const LightSampleValues light_values = draw_light_sample(shading, sampler);
-        sample_bsdf();
-        direct = light_sample_mis(sp, light_values);
+      if (one_light_sample) {
+        u_light = draw_light_choice(shading, sampler);
+        // Chained to the pair sampled before it (the direction that led here, or the film
+        // position at the first hit): one stratified point for both (get_2d_chained()).
+        u_light_point = sampler.get_2d_chained();
       } else if (settings_.mis) {
         direct = sample_lights_mis(sp, sampler);
       } else if (settings_.light_transport.hemisphere) {
@@ -292,6 +284,17 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
       } else {
         direct = estimate_direct_lights(sp, sampler, context, shading, light_samples);
       }
+    }
+    // The first vertex's direction begins a fresh point (chained to the film position it
+    // measured worse: relMSE +12% on CBbunny); later ones continue the path's chain. Built in
+    // place, not assigned: a copy of the sample is made in 16-byte blocks straight after its
+    // fields are stored one by one, and each such load waits for the stores it spans (no
+    // store-to-load forwarding).
+    const float u_lobe = sp.lobe_sample(sampler);
+    const std::optional<BsdfSample> bs =
+        sp.sample(u_lobe, bounces == 0 ? sampler.get_2d() : sampler.get_2d_chained());
+    if (nee) {
+      if (one_light_sample) direct = light_sample_mis(sp, u_light, u_light_point);
       add(beta * direct, bounces + 1);
       if (vertex) {
         add(beta * connect_caustic_vertex(sp, bounces, *traced, *vertex) *
@@ -300,7 +303,6 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
       }
     }
 
-    if (!bsdf_sampled) sample_bsdf();
     if (!bs) break;
     beta *= bs->f * (std::abs(glm::dot(bs->wi, si.shading_normal)) / bs->pdf);
     if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
