@@ -55,13 +55,6 @@ TextureFilter texture_filter_of(const RenderContext& context) {
   return camera_texture_filter(context.camera, context.image_height, context.spp);
 }
 
-ShadingPoint::ShadingPoint(const SurfaceInteraction& si_in, const Ray& ray, const Bsdf& bsdf_in)
-    : si(si_in),
-      frame(Frame::from_z(si_in.shading_normal)),
-      bsdf(&bsdf_in),
-      wo_world(-glm::normalize(ray.direction)),
-      wo(frame.to_local(wo_world)) {}
-
 float ShadingPoint::lobe_sample(Sampler& sampler) const {
   if (bsdf->reads_lobe_sample()) return sampler.get_1d();
   sampler.skip_dimensions(1);

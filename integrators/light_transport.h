@@ -62,9 +62,18 @@ TextureFilter texture_filter_of(const RenderContext& context);
 /// treated as reflection or transmission by its sides of the geometric surface, and a BSDF
 /// lobe that disagrees contributes nothing.
 struct ShadingPoint {
-  ShadingPoint(const SurfaceInteraction& si, const Ray& ray, const Bsdf& bsdf);
+  /// `surface` must outlive the shading point, which refers to it rather than copying it (a copy
+  /// of the surface just returned by Scene::surface_at() reloads it in blocks that do not match
+  /// the stores that wrote it: a store-forwarding stall at every vertex).
+  ShadingPoint(const SurfaceInteraction& surface, const Ray& ray, const Bsdf& scattering)
+      : si(surface),
+        frame(Frame::from_z(surface.shading_normal)),
+        bsdf(&scattering),
+        wo_world(-glm::normalize(ray.direction)),
+        wo(frame.to_local(wo_world)) {}
+  ShadingPoint(SurfaceInteraction&&, const Ray&, const Bsdf&) = delete;
 
-  SurfaceInteraction si;
+  const SurfaceInteraction& si;
   Frame frame;
   const Bsdf* bsdf;
   Vec3 wo_world;  ///< unit, toward the previous vertex
