@@ -65,12 +65,9 @@ Ray CameraRayGenerator::generate_ray(Vec2 film, Vec2 lens) const {
   }
   const float length = glm::length(dir_cam);
   const float depth_per_t = dir_cam.z / length;
-  Ray ray;
-  ray.origin = camera_.position + origin_cam.x * right_ + origin_cam.y * true_up_;
-  ray.direction = glm::normalize(dir_cam.x * right_ + dir_cam.y * true_up_ + dir_cam.z * forward_);
-  ray.tmin = camera_.znear / depth_per_t;
-  ray.tmax = camera_.zfar / depth_per_t;
-  return ray;
+  return build_ray(camera_.position + origin_cam.x * right_ + origin_cam.y * true_up_,
+                   glm::normalize(dir_cam.x * right_ + dir_cam.y * true_up_ + dir_cam.z * forward_),
+                   camera_.znear / depth_per_t, camera_.zfar / depth_per_t);
 }
 
 std::optional<FilmProjection> CameraRayGenerator::project(const Vec3& p) const {

@@ -1,5 +1,9 @@
 #pragma once
 
+#include <cstddef>
+#include <cstring>
+
+#include "core/lanes3.h"
 #include "core/math.h"
 
 namespace prism {
@@ -14,6 +18,24 @@ struct Ray {
 
   Vec3 at(float t) const { return origin + t * direction; }
 };
+
+/// The ray origin + t * direction for t in [tmin, tmax], written as two 16-byte vectors
+/// {origin, tmin} and {direction, tmax}: the halves the wide BVH's set-up loads. Rays built
+/// at every vertex (spawn_ray(), camera rays) are built so: a vector load of a ray written field
+/// by field waits until those stores reach the cache, as a load that spans several stores cannot
+/// take its value from them (store-to-load forwarding).
+inline Ray build_ray(const Vec3& origin, const Vec3& direction, float tmin, float tmax) {
+  static_assert(offsetof(Ray, tmin) == offsetof(Ray, origin) + 3 * sizeof(float) &&
+                offsetof(Ray, direction) == offsetof(Ray, origin) + 4 * sizeof(float) &&
+                offsetof(Ray, tmax) == offsetof(Ray, direction) + 3 * sizeof(float) &&
+                sizeof(Ray) == 8 * sizeof(float));
+  const Lanes3 origin_and_tmin = {origin.x, origin.y, origin.z, tmin};
+  const Lanes3 direction_and_tmax = {direction.x, direction.y, direction.z, tmax};
+  Ray ray;
+  std::memcpy(reinterpret_cast<char*>(&ray) + offsetof(Ray, origin), &origin_and_tmin, 16);
+  std::memcpy(reinterpret_cast<char*>(&ray) + offsetof(Ray, direction), &direction_and_tmax, 16);
+  return ray;
+}
 
 /// The wide BVH's box padding (docs/RELIABILITY.md, "Geometric robustness"): its slab test never
 /// rejects a primitive the watertight triangle test or the sphere test would hit, because every

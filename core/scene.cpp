@@ -189,28 +189,22 @@ Vec3 offset_ray_origin(const Vec3& p, const Vec3& error, const Vec3& geometric_n
 }
 
 Ray spawn_ray(const SurfaceInteraction& si, const Vec3& direction) {
-  Ray r;
-  r.origin = offset_ray_origin(si.position, si.position_error, si.geometric_normal, direction);
-  r.direction = direction;
-  r.tmin = 0.0f;
-  r.tmax = kInfinity;
-  return r;
+  return build_ray(
+      offset_ray_origin(si.position, si.position_error, si.geometric_normal, direction), direction,
+      0.0f, kInfinity);
 }
 
 Ray spawn_ray_to(const SurfaceInteraction& si, const Vec3& target) {
-  Ray r;
-  r.origin =
+  const Vec3 origin =
       offset_ray_origin(si.position, si.position_error, si.geometric_normal, target - si.position);
-  r.direction = target - r.origin;
-  r.tmin = 0.0f;
+  const Vec3 direction = target - origin;
   // A target computed from a point far from the world origin is only known to a few ulps of its
   // coordinates: stop short of it by that too, or it may lie just behind its emitter.
   const float rounding = kTargetGamma * (max_component(abs_components(target)) +
-                                         max_component(abs_components(r.origin)));
-  const float length = glm::length(r.direction);
+                                         max_component(abs_components(origin)));
+  const float length = glm::length(direction);
   const float short_of = std::max(kShadowEpsilon, rounding / length);
-  r.tmax = short_of < 1.0f ? 1.0f - short_of : 0.0f;
-  return r;
+  return build_ray(origin, direction, 0.0f, short_of < 1.0f ? 1.0f - short_of : 0.0f);
 }
 
 }  // namespace prism
