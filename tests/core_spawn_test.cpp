@@ -243,6 +243,29 @@ TEST(CoreSpawn, ShadowRaysEndShortOfTheirTargetByTheCoordinatesPrecision) {
   EXPECT_GT(far.tmax, 0.9f);
 }
 
+TEST(CoreSpawn, BuiltRaysCarryTheirPartsAndSpawnedRaysTheirDirection) {
+  // build_ray() writes the two vectors {origin, tmin} and {direction, tmax}: every field lands
+  // where Ray has it.
+  const Ray built = build_ray({1.0f, -2.0f, 3.5f}, {0.0f, 0.6f, -0.8f}, 0.25f, 7.0f);
+  EXPECT_EQ(built.origin, Vec3(1.0f, -2.0f, 3.5f));
+  EXPECT_EQ(built.direction, Vec3(0.0f, 0.6f, -0.8f));
+  EXPECT_EQ(built.tmin, 0.25f);
+  EXPECT_EQ(built.tmax, 7.0f);
+  const Scene scene = one_triangle_scene({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  const SurfaceInteraction si = scene.surface_at(Ray{}, Hit{1.0f, 0.25f, 0.25f, 0, 0});
+  const Vec3 up = glm::normalize(Vec3(0.1f, 0.2f, 1.0f));
+  const Ray leaving = spawn_ray(si, up);
+  EXPECT_EQ(leaving.direction, up);
+  EXPECT_EQ(leaving.tmin, 0.0f);
+  EXPECT_EQ(leaving.tmax, kInfinity);
+  EXPECT_EQ(leaving.origin,
+            offset_ray_origin(si.position, si.position_error, si.geometric_normal, up));
+  const Vec3 target = si.position + Vec3(0.0f, 0.0f, 2.0f);
+  const Ray shadow = spawn_ray_to(si, target);
+  EXPECT_EQ(shadow.tmin, 0.0f);
+  EXPECT_EQ(shadow.direction, target - shadow.origin);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Scenes, transforms and backends of the harness.
 
