@@ -86,7 +86,8 @@ struct ShadingPoint {
   Rgb eval_cos(const Vec3& wi_world) const;
   /// BSDF sampling density of the unit world direction wi.
   float pdf(const Vec3& wi_world) const;
-  /// A BSDF sample with wi in world space; nothing when it fails or fails the leak check.
+  /// A BSDF sample with wi in world space (unit to within 1e-6); nothing when it fails or fails
+  /// the leak check.
   std::optional<BsdfSample> sample(float u_lobe, Vec2 u) const;
   /// Whether the world-space pair (wo, wi) is a reflection with respect to the geometric normal
   /// and agrees with the same classification in the shading frame (wi_local: wi_world there).
@@ -132,7 +133,10 @@ inline std::optional<BsdfSample> ShadingPoint::sample(float u_lobe, Vec2 u) cons
   const std::optional<BsdfSample> s =
       diffuse ? diffuse->sample(wo, u_lobe, u) : bsdf->sample(wo, u_lobe, u);
   if (s && s->pdf > 0.0f) {
-    const Vec3 wi_world = glm::normalize(frame.to_world(s->wi));
+    // Unit to within a few ulps (a unit local direction in an orthonormal frame), so not
+    // normalised again: that square root and division sat on each bounce's chain of dependent
+    // operations, which the next ray waits for.
+    const Vec3 wi_world = frame.to_world(s->wi);
     if (sides_agree(wi_world, s->wi)) {
       out.emplace();
       out->f = s->f;

@@ -413,6 +413,34 @@ TEST(IntegratorsBsdf, ShadingPointTakesTheLambertianBsdfInlineWithTheSameResults
   }
 }
 
+TEST(IntegratorsBsdf, ShadingPointSamplesAreUnitDirectionsInTheWorld) {
+  // ShadingPoint::sample() does not normalise the world direction again: the BSDFs' local
+  // directions and the shading frame must keep it unit to within rounding.
+  std::vector<NamedBsdf> bsdfs = glossy_bsdfs();
+  bsdfs.push_back({"mirror", std::make_shared<MirrorBsdf>(Rgb(0.9f))});
+  bsdfs.push_back({"glass", std::make_shared<GlassBsdf>(Rgb(1.0f), Rgb(1.0f), 1.5f)});
+  bsdfs.push_back({"refraction", std::make_shared<RefractionBsdf>(Rgb(1.0f), 1.33f)});
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::uniform_real_distribution<float> u01(0.0f, 0x1.fffffep-1f);
+  for (const NamedBsdf& b : bsdfs) {
+    int sampled = 0;
+    for (int i = 0; i < 5000; ++i) {
+      SurfaceInteraction si;
+      si.shading_normal = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+      si.geometric_normal = si.shading_normal;
+      Ray ray;
+      ray.direction = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+      const ShadingPoint sp(si, ray, *b.bsdf);
+      const auto s = sp.sample(u01(rng), {u01(rng), u01(rng)});
+      if (!s) continue;
+      ++sampled;
+      ASSERT_NEAR(glm::length(s->wi), 1.0f, 1e-6f) << b.name << " " << i;
+    }
+    EXPECT_GT(sampled, 1000) << b.name;
+  }
+}
+
 TEST(IntegratorsBsdf, OnlyBsdfsThatReadTheLobeSampleSayTheyDo) {
   // The path integrator skips u_lobe's sampler dimension for a BSDF that does not read it: its
   // samples must then be the same for every u_lobe. Glass, which reads it, must change lobe.
