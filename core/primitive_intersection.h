@@ -67,7 +67,8 @@ std::optional<PrimitiveHit> triangle_hit_parameters(const WatertightRay& ray, co
 std::optional<PrimitiveHit> intersect_sphere(const Ray& ray, const Vec3& center, float radius);
 /// The t of intersect_sphere() alone (what any-hit queries need): no trigonometry for u, v.
 std::optional<float> intersect_sphere_t(const Ray& ray, const Vec3& center, float radius);
-/// The u, v intersect_sphere() reports for its hit at `t`.
-Vec2 sphere_hit_uv(const Ray& ray, float t, const Vec3& center, float radius);
+/// The u, v intersect_sphere() reports for its hit at `t` on a sphere about `center` (the angles
+/// of the hit point's direction from it, whatever the radius).
+Vec2 sphere_hit_uv(const Ray& ray, float t, const Vec3& center);
 
 }  // namespace prism

@@ -27,10 +27,15 @@ PathIntegrator::Settings::Settings(const ParamSet& params)
 
 namespace {
 
-/// The sampler value that chooses a light for one light sample (none, and no sampler dimension,
-/// with a single light); the point on it follows (get_2d_chained()).
-float draw_light_choice(const ShadingContext& shading, Sampler& sampler) {
-  return shading.lights.size() > 1 ? sampler.get_1d() : 0.0f;
+/// Draws the sampler values of one light sample, in this order: `u_light` chooses the light (no
+/// value, and no sampler dimension, with a single light); `u_point` is the point on it, chained
+/// to the pair sampled before it (the direction that led here, or the film position at the first
+/// hit): one stratified point for both (Sampler::get_2d_chained()). Into scalars, not a struct:
+/// built in memory, one is reloaded in pieces that do not match its stores.
+void draw_light_sample(const ShadingContext& shading, Sampler& sampler, float& u_light,
+                       Vec2& u_point) {
+  u_light = shading.lights.size() > 1 ? sampler.get_1d() : 0.0f;
+  u_point = sampler.get_2d_chained();
 }
 
 class PathEstimator final : public PixelEstimator {
@@ -77,9 +82,7 @@ class PathEstimator final : public PixelEstimator {
   /// Light arriving at `sp` from one light chosen by power, MIS-weighted against BSDF
   /// sampling; averaged over light_samples samples.
   Rgb sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) const;
-  /// One such sample from its sampler values (the light's choice, draw_light_choice(), and the
-  /// point on it), as one of light_samples. The values come as scalars, not in a struct: built
-  /// in memory, one would be reloaded in pieces that do not match its stores.
+  /// One such sample from its sampler values (draw_light_sample()), as one of light_samples.
   Rgb light_sample_mis(const ShadingPoint& sp, float u_light, Vec2 u_point) const;
   /// The path tracing estimate along `camera_ray`; with `traced` (the light-traced sample of this
   /// camera sample's index), the caustics li() leaves to the light tracer are left out and the
@@ -106,8 +109,10 @@ Rgb PathEstimator::sample_lights_mis(const ShadingPoint& sp, Sampler& sampler) c
   const int n = std::max(1, settings_.light_transport.light_samples);
   Rgb sum(0.0f);
   for (int i = 0; i < n; ++i) {
-    const float u_light = draw_light_choice(shading_, sampler);
-    sum += light_sample_mis(sp, u_light, sampler.get_2d_chained());
+    float u_light;
+    Vec2 u_point;
+    draw_light_sample(shading_, sampler, u_light, u_point);
+    sum += light_sample_mis(sp, u_light, u_point);
   }
   return sum / float(n);
 }
@@ -273,10 +278,7 @@ Rgb PathEstimator::li_paths(const Ray& camera_ray, Sampler& sampler, AovSample& 
         if (u < p) vertex = traced->choose_vertex(std::min(u / p, 0x1.fffffep-1f));
       }
       if (one_light_sample) {
-        u_light = draw_light_choice(shading, sampler);
-        // Chained to the pair sampled before it (the direction that led here, or the film
-        // position at the first hit): one stratified point for both (get_2d_chained()).
-        u_light_point = sampler.get_2d_chained();
+        draw_light_sample(shading, sampler, u_light, u_light_point);
       } else if (settings_.mis) {
         direct = sample_lights_mis(sp, sampler);
       } else if (settings_.light_transport.hemisphere) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "core/sampler.h"
 #include "integrators/lights/area_light.h"

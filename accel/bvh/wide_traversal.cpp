@@ -23,7 +23,7 @@ bool intersect_sphere_leaf(const WideBvhView& bvh, const Ray& query_ray, uint32_
     }
     found = true;
     ray.tmax = *t;
-    const Vec2 uv = sphere_hit_uv(ray, *t, s.center, s.radius);
+    const Vec2 uv = sphere_hit_uv(ray, *t, s.center);
     hit = {*t, uv.x, uv.y, bvh.sphere_geom_id, ids[i], nullptr};
   }
   return found;

@@ -58,6 +58,7 @@ class Bsdf {
   /// Whether sample() reads `u_lobe` (a choice between lobes). When it does not, a caller may
   /// skip that sampler dimension instead of computing a value nobody reads.
   bool reads_lobe_sample() const { return reads_lobe_sample_; }
+  /// What this BSDF is (as_diffuse() reads it).
   Kind kind() const { return kind_; }
   /// A colour in [0,1]^3 that describes the surface (the albedo AOV).
   virtual Rgb albedo() const = 0;

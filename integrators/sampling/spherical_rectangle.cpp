@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/angles.h"
 #include "core/lanes3.h"
 #include "integrators/sampling/warp.h"
 

@@ -1,6 +1,6 @@
 #include "integrators/sampling/warp.h"
 
-#include <limits>
+#include "core/angles.h"
 
 namespace prism {
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <optional>
 
-#include "core/angles.h"  // atan2_nonnegative_y(), for the solid angles here
 #include "core/math.h"
 
 namespace prism {
