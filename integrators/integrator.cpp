@@ -69,7 +69,7 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
         const LightTracedSample* light = nullptr;
         if (light_traced) {
           std::shared_ptr<const LightTracedSample>& image = light_images[s - range.first];
-          if (!image) image = light_traced->sample(s);
+          if (!image) image = light_traced->sample(s, range.count());
           light = image.get();
         }
         if (traced) {

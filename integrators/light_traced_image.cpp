@@ -55,13 +55,8 @@ struct LightTracedImage::Tracing {
   std::shared_ptr<const LightTracedSample> image;  ///< set before ready
 };
 
-LightTracedImage::LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height,
-                                   size_t cached)
-    : trace_(std::move(trace)),
-      paths_(paths),
-      width_(width),
-      height_(height),
-      cached_(std::max<size_t>(1, cached)) {}
+LightTracedImage::LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height)
+    : trace_(std::move(trace)), paths_(paths), width_(width), height_(height) {}
 
 uint32_t LightTracedImage::max_paths(uint32_t samples) {
   const size_t per_path = sizeof(Splat) + sizeof(CausticVertex);
@@ -71,8 +66,10 @@ uint32_t LightTracedImage::max_paths(uint32_t samples) {
 
 LightTracedImage::~LightTracedImage() = default;
 
-std::shared_ptr<LightTracedImage::Tracing> LightTracedImage::tracing_of(uint32_t sample) const {
+std::shared_ptr<LightTracedImage::Tracing> LightTracedImage::tracing_of(uint32_t sample,
+                                                                        uint32_t in_use) const {
   const std::lock_guard<std::mutex> lock(mutex_);
+  cached_ = std::max<size_t>(cached_, in_use);
   if (const auto it = cache_.find(sample); it != cache_.end()) return it->second;
   auto tracing = std::make_shared<Tracing>(std::max(1u, (paths_ + kChunkPaths - 1) / kChunkPaths));
   cache_.emplace(sample, tracing);
@@ -85,8 +82,9 @@ std::shared_ptr<LightTracedImage::Tracing> LightTracedImage::tracing_of(uint32_t
   return tracing;
 }
 
-std::shared_ptr<const LightTracedSample> LightTracedImage::sample(uint32_t sample) const {
-  const std::shared_ptr<Tracing> tracing = tracing_of(sample);
+std::shared_ptr<const LightTracedSample> LightTracedImage::sample(uint32_t sample,
+                                                                  uint32_t in_use) const {
+  const std::shared_ptr<Tracing> tracing = tracing_of(sample, in_use);
   Tracing& t = *tracing;
   for (uint32_t chunk; (chunk = t.next_chunk.fetch_add(1)) < t.chunks;) {
     try {

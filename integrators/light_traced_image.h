@@ -72,10 +72,12 @@ class LightTracedSample {
 /// What a light tracer leaves per sample index (LightTracedSample), traced on demand: the threads
 /// that ask for a sample index not traced yet share its paths in chunks, then all receive the same
 /// image. Each image is a pure function of its sample index (the tracer must be), so an image
-/// dropped from the cache and traced again has the same bits. The most recent `cached` indices
-/// are kept (a render's spp, so that schedules handing out tiles with every sample, as MPI's
-/// does, trace each index once: kMemoryBudget bounds what that holds, see max_paths()).
-/// Thread-safe.
+/// dropped from the cache and traced again has the same bits. The cache keeps as many of the
+/// most recent indices as a caller has needed at once (see sample()): all of a render's spp when
+/// tiles come with every sample, as MPI's schedule hands them out, so that each index is traced
+/// once (kMemoryBudget bounds what that holds, see max_paths()); one when a render goes one
+/// sample per pass, the default at 64 spp, so that a pass's image is freed after it and the
+/// next pass reuses its memory instead of faulting in fresh pages. Thread-safe.
 class LightTracedImage {
  public:
   /// Traces the paths [first, last) of sample index `sample` and appends their splats and
@@ -84,12 +86,14 @@ class LightTracedImage {
                                            std::vector<Splat>&, std::vector<CausticVertex>&)>;
 
   /// Sample indices traced with `paths` paths each, over a width x height image.
-  LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height, size_t cached);
+  LightTracedImage(TraceFunction trace, uint32_t paths, int width, int height);
   ~LightTracedImage();
 
-  /// The image of sample index `sample`; traces it (with whichever other threads ask for it
-  /// meanwhile) if it is not cached. Rethrows what the tracing threw.
-  std::shared_ptr<const LightTracedSample> sample(uint32_t sample) const;
+  /// The image of sample index `sample`, for a caller that uses the images of `in_use` sample
+  /// indices at once (a tile's range of samples): from now on the cache keeps at least that
+  /// many. Traces the index (with whichever other threads ask for it meanwhile) if it is not
+  /// cached. Rethrows what the tracing threw.
+  std::shared_ptr<const LightTracedSample> sample(uint32_t sample, uint32_t in_use) const;
 
   static constexpr uint32_t kChunkPaths = 256;
   /// The most paths per sample index whose samples, `samples` of them, fit kMemoryBudget however
@@ -100,13 +104,13 @@ class LightTracedImage {
 
  private:
   struct Tracing;
-  std::shared_ptr<Tracing> tracing_of(uint32_t sample) const;
+  std::shared_ptr<Tracing> tracing_of(uint32_t sample, uint32_t in_use) const;
 
   TraceFunction trace_;
   uint32_t paths_;
   int width_, height_;
-  size_t cached_;
   mutable std::mutex mutex_;
+  mutable size_t cached_ = 1;  ///< the most indices kept: the largest in_use asked with
   mutable std::map<uint32_t, std::shared_ptr<Tracing>> cache_;
   mutable std::deque<uint32_t> order_;  ///< cached sample indices, oldest first
 };

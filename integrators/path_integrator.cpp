@@ -57,7 +57,7 @@ class PathEstimator final : public PixelEstimator {
                                      std::vector<CausticVertex>& vertices) {
             tracer->trace(sample, first, last, out, vertices);
           },
-          caustics_->paths(), width, height, size_t(std::max(1, context.spp)));
+          caustics_->paths(), width, height);
       const Bounds3 bounds = context.scene.geometry.bounds();
       const float diagonal = glm::length(bounds.upper - bounds.lower);
       connection_radius_ =

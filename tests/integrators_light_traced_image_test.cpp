@@ -1,0 +1,95 @@
+// LightTracedImage (integrators/light_traced_image.h): which sample indices it traces and keeps,
+// and that an index traced again gives the same image.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <mutex>
+#include <vector>
+
+#include "integrators/light_traced_image.h"
+
+namespace prism {
+namespace {
+
+constexpr int kWidth = 8;
+constexpr int kHeight = 4;
+constexpr uint32_t kPaths = 300;  // two chunks of LightTracedImage::kChunkPaths
+
+/// A tracer whose splats are a function of (sample index, path), counting the paths it traced
+/// per sample index.
+struct CountingTracer {
+  std::mutex mutex;
+  std::map<uint32_t, uint32_t> paths_traced;
+
+  LightTracedImage::TraceFunction function() {
+    return [this](uint32_t sample, uint32_t first, uint32_t last, std::vector<Splat>& splats,
+                  std::vector<CausticVertex>&) {
+      for (uint32_t path = first; path < last; ++path) {
+        splats.push_back(Splat{.pixel = (sample * 7 + path) % uint32_t(kWidth * kHeight),
+                               .path = path,
+                               .radiance = Rgb(float(sample + 1), float(path % 5), 0.25f)});
+      }
+      const std::lock_guard<std::mutex> lock(mutex);
+      paths_traced[sample] += last - first;
+    };
+  }
+  uint32_t times_traced(uint32_t sample) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    return paths_traced[sample] / kPaths;
+  }
+};
+
+std::vector<Rgb> pixels_of(const LightTracedSample& image) {
+  std::vector<Rgb> pixels;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) pixels.push_back(image.at({x, y}));
+  }
+  return pixels;
+}
+
+TEST(IntegratorsLightTracedImage, TracesEachIndexOnceWhileCallersUseThemAllAtOnce) {
+  // A tile handed every sample of its pixels (MPI's schedule) uses all of them at once.
+  CountingTracer tracer;
+  const LightTracedImage images(tracer.function(), kPaths, kWidth, kHeight);
+  for (int tile = 0; tile < 3; ++tile) {
+    for (uint32_t s = 0; s < 4; ++s) images.sample(s, 4);
+  }
+  for (uint32_t s = 0; s < 4; ++s) EXPECT_EQ(tracer.times_traced(s), 1u) << s;
+}
+
+TEST(IntegratorsLightTracedImage, KeepsOnlyWhatCallersUseAtOnceAndRetracesTheSameBits) {
+  // One sample per pass: a pass's image is dropped once the next pass asks for its own.
+  CountingTracer tracer;
+  const LightTracedImage images(tracer.function(), kPaths, kWidth, kHeight);
+  const std::vector<Rgb> first = pixels_of(*images.sample(0, 1));
+  images.sample(0, 1);
+  EXPECT_EQ(tracer.times_traced(0), 1u);  // still cached within its pass
+  images.sample(1, 1);
+  const std::vector<Rgb> again = pixels_of(*images.sample(0, 1));
+  EXPECT_EQ(tracer.times_traced(0), 2u);
+  EXPECT_EQ(tracer.times_traced(1), 1u);
+  EXPECT_EQ(first, again);
+  // Pixel 3 sums the splats of sample 0's paths 3, 35, 67, ...
+  Rgb expected(0.0f);
+  for (uint32_t path = 3; path < kPaths; path += kWidth * kHeight) {
+    expected += Rgb(1.0f, float(path % 5), 0.25f);
+  }
+  EXPECT_EQ(first[3], expected);
+}
+
+TEST(IntegratorsLightTracedImage, TheLargestUseAtOnceSoFarHolds) {
+  CountingTracer tracer;
+  const LightTracedImage images(tracer.function(), kPaths, kWidth, kHeight);
+  images.sample(0, 2);
+  images.sample(1, 1);
+  images.sample(0, 1);  // two are kept: 0 is still there
+  EXPECT_EQ(tracer.times_traced(0), 1u);
+  images.sample(2, 1);  // the oldest traced, 0, makes room
+  images.sample(1, 1);
+  EXPECT_EQ(tracer.times_traced(1), 1u);
+  images.sample(0, 1);
+  EXPECT_EQ(tracer.times_traced(0), 2u);
+}
+
+}  // namespace
+}  // namespace prism
