@@ -55,9 +55,12 @@ class ImageIoModule {
   }
 
   void load() {
-    // RTLD_NOW: a module whose symbols the program does not provide fails here, as a whole,
-    // rather than at some later call. RTLD_LOCAL: its libraries stay out of the program's scope.
-    void* handle = dlopen(path_.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // The module itself is linked with -z now: one whose symbols the program does not provide
+    // fails here, as a whole, rather than at some later call. RTLD_LAZY leaves the function
+    // calls of the ~260 libraries it pulls in to be bound when first made (13 thousand fewer
+    // symbol lookups, about 25 ms of the load). RTLD_LOCAL: its libraries stay out of the
+    // program's scope.
+    void* handle = dlopen(path_.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (handle == nullptr) {
       const char* message = dlerror();
       failure_ = message != nullptr ? message : "dlopen failed";
