@@ -95,26 +95,14 @@ std::optional<PrimitiveHit> intersect_triangle(const WatertightRay& ray, const V
   return triangle_hit_parameters(ray, p0, p1, p2);
 }
 
+namespace sphere_test {
+#include "core/sphere_test_body.h"
+}  // namespace sphere_test
+
 std::optional<float> intersect_sphere_t(const Ray& ray, const Vec3& center, float radius) {
-  const Vec3 f = ray.origin - center;
-  const Vec3& d = ray.direction;
-  const float a = glm::dot(d, d);
-  const float half_b = glm::dot(f, d);
-  const float c = glm::dot(f, f) - radius * radius;
-  // Discriminant in the form that does not cancel for distant spheres (Ray Tracing Gems, ch. 7):
-  // a (r^2 - |l|^2), l = f - (half_b / a) d the line's closest point to the centre, written as
-  // a r^2 - |f x d|^2 (Lagrange's identity), which needs no division: a miss costs none, and a
-  // hit's two divisions below run side by side.
-  const Vec3 f_cross_d = glm::cross(f, d);
-  const float disc = a * (radius * radius) - glm::dot(f_cross_d, f_cross_d);
-  if (!(disc >= 0.0f)) return std::nullopt;
-  const float q = -half_b - std::copysign(std::sqrt(disc), half_b);
-  float t0 = c / q;
-  float t1 = q / a;
-  if (t0 > t1) std::swap(t0, t1);
-  if (t0 >= ray.tmin && t0 <= ray.tmax) return t0;
-  if (t1 >= ray.tmin && t1 <= ray.tmax) return t1;
-  return std::nullopt;
+  float t;
+  if (!sphere_test::sphere_hit_t(ray, center, radius, t)) return std::nullopt;
+  return t;
 }
 
 Vec2 sphere_hit_uv(const Ray& ray, float t, const Vec3& center) {

@@ -18,13 +18,41 @@ struct StackEntry {
   float t;  ///< padded entry distance of the box
 };
 
+/// Tests the spheres of one sphere leaf (blocks [first, first + count)) for hits in
+/// [ray.tmin, tmax]; replaces `hit` by any that comes before it (hit.t is then the new tmax)
+/// and returns whether it did. With any_hit, returns true at the first hit instead.
+PRISM_KERNEL_INLINE bool intersect_spheres(const WideBvhView& bvh, const Ray& query_ray,
+                                           uint32_t first, uint32_t count, float tmax, WideHit& hit,
+                                           bool any_hit) {
+  Ray ray = query_ray;
+  ray.tmax = tmax;
+  bool found = false;
+  const uint32_t* ids = bvh.sphere_blocks + 4 * first;
+  for (uint32_t i = 0; i < 4 * count; ++i) {
+    // Unused lanes repeat the previous sphere.
+    if ((i & 3) != 0 && ids[i] == ids[i - 1]) continue;
+    const Sphere& s = bvh.spheres[ids[i]];
+    // t first: a shadow ray needs nothing else, and u, v (two inverse trigonometric
+    // functions) are computed only for a hit that becomes the closest so far.
+    float t;
+    if (!sphere_hit_t(ray, s.center, s.radius, t)) continue;
+    if (any_hit) return true;
+    if (!comes_before_hit(t, bvh.sphere_geom_id, ids[i], hit)) continue;
+    found = true;
+    ray.tmax = t;
+    const Vec2 uv = sphere_hit_uv(ray, t, s.center);  // out of line: the baseline program's
+    hit = {t, uv.x, uv.y, bvh.sphere_geom_id, ids[i], nullptr};
+  }
+  return found;
+}
+
 PRISM_KERNEL_INLINE bool intersect_leaf(const WideBvhView& bvh, uint32_t ref,
                                         const TriangleRay& triangle_ray, const Ray& ray, float tmax,
                                         WideHit& hit, bool any_hit) {
   const uint32_t first = ref & kLeafFirstMask;
   const uint32_t count = ((ref >> kLeafCountShift) & 15u) + 1;
   if (ref & kSphereLeafFlag) {
-    return intersect_sphere_leaf(bvh, ray, first, count, tmax, hit, any_hit);
+    return intersect_spheres(bvh, ray, first, count, tmax, hit, any_hit);
   }
   return intersect_blocks(bvh.triangle_blocks + first, count, triangle_ray, tmax, hit, any_hit);
 }

@@ -14,6 +14,9 @@ PRISM_KERNEL_INLINE bool comes_before_hit(float t, uint32_t geom_id, uint32_t pr
 
 PRISM_KERNEL_INLINE int lowest_lane(uint32_t mask) { return __builtin_ctz(mask); }
 
+// sphere_hit_t(): the ray/sphere test of core/primitive_intersection.h, in this namespace.
+#include "core/sphere_test_body.h"
+
 // The ray's share of the box padding (core/ray.h), per unit of the origin's largest |coordinate|;
 // the boxes' share is in their stored planes.
 inline constexpr float kOriginPadding = kBoxOriginPaddingUlps / (1 << 24);

@@ -52,10 +52,4 @@ const WideKernels& avx2_wide_kernels();
 /// AVX-512 (F, VL, BW, DQ) kernels (every width). Call only when cpu_has_avx512() is true.
 const WideKernels& avx512_wide_kernels();
 
-/// Tests the spheres of one sphere leaf (blocks [first, first + count)) for hits in
-/// [ray.tmin, tmax]; replaces `hit` by any that comes before it (hit.t is then the new tmax)
-/// and returns whether it did. With any_hit, returns true at the first hit instead.
-bool intersect_sphere_leaf(const WideBvhView& bvh, const Ray& ray, uint32_t first, uint32_t count,
-                           float tmax, WideHit& hit, bool any_hit);
-
 }  // namespace prism

@@ -7,6 +7,7 @@
 #include "accel/bvh/build_reference.h"
 #include "accel/bvh/wide_node.h"
 #include "accel/bvh/wide_traversal.h"
+#include "core/primitive_intersection.h"
 
 namespace prism {
 namespace wide_generic {
