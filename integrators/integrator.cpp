@@ -49,7 +49,12 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
   // pixel of the tile runs through the range).
   const LightTracedImage* light_traced = estimator_->light_traced_image();
   std::vector<std::shared_ptr<const LightTracedSample>> light_images;
-  if (light_traced && range.last > range.first) light_images.resize(range.last - range.first);
+  // Where each image's lookups are along the current row (at_in_row()).
+  std::vector<LightTracedSample::RowPosition> light_rows;
+  if (light_traced && range.last > range.first) {
+    light_images.resize(range.last - range.first);
+    light_rows.resize(range.last - range.first);
+  }
   // The pixels whose rays may reach the scene; the others' samples are known without tracing:
   // no radiance (but the light tracer's, which never reaches them either) and no AOVs.
   const PixelRect seeing = skip_unseen_ ? pixels_seeing_bounds(context.camera, scene_bounds_,
@@ -85,7 +90,7 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
           radiance = light ? estimator_->li_with_light(ray, *sampler, aovs, *light)
                            : estimator_->li(ray, *sampler, aovs);
         }
-        if (light) radiance += light->at(pixel);
+        if (light) radiance += light->at_in_row(pixel, light_rows[s - range.first]);
         film.add_sample(pixel, radiance, aovs);
         if (batch <= 0) continue;
         // Illuminance sums in double, in sample order: thousands of samples.

@@ -39,6 +39,21 @@ Rgb LightTracedSample::at(glm::ivec2 pixel) const {
   return it != last && *it == index ? radiance_[size_t(it - pixels_.begin())] : Rgb(0.0f);
 }
 
+Rgb LightTracedSample::at_in_row(glm::ivec2 pixel, RowPosition& position) const {
+  const uint32_t index = uint32_t(pixel.y) * uint32_t(width_) + uint32_t(pixel.x);
+  if (position.y != pixel.y ||
+      (position.next > position.begin && pixels_[position.next - 1] >= index)) {
+    const uint32_t begin = row_begin_[size_t(pixel.y)], end = row_begin_[size_t(pixel.y) + 1];
+    const auto first = pixels_.begin() + begin, last = pixels_.begin() + end;
+    position = {pixel.y, begin, uint32_t(std::lower_bound(first, last, index) - pixels_.begin()),
+                end};
+  } else {
+    while (position.next < position.end && pixels_[position.next] < index) ++position.next;
+  }
+  return position.next < position.end && pixels_[position.next] == index ? radiance_[position.next]
+                                                                         : Rgb(0.0f);
+}
+
 /// One sample index being traced (or traced): its chunks, handed out to the threads that ask.
 struct LightTracedImage::Tracing {
   explicit Tracing(uint32_t chunk_count)

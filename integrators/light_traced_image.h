@@ -45,6 +45,15 @@ class LightTracedSample {
                     int height, uint32_t paths);
   /// The radiance deposited on `pixel` (inside the image): 0 for most pixels.
   Rgb at(glm::ivec2 pixel) const;
+  /// Where at_in_row() is in the entries of one row.
+  struct RowPosition {
+    int y = -1;  ///< the row; another row starts over
+    uint32_t begin = 0, next = 0, end = 0;
+  };
+  /// at(), for pixels taken along a row left to right: the entries of `position`'s row are
+  /// searched once, at its first pixel, then walked forward. Any order of pixels gives at()'s
+  /// value; a pixel left of the previous one in the same row is searched for again.
+  Rgb at_in_row(glm::ivec2 pixel, RowPosition& position) const;
   /// The caustic vertices, in path order, and the number of paths they came from.
   const std::vector<CausticVertex>& vertices() const { return vertices_; }
   uint32_t paths() const { return paths_; }

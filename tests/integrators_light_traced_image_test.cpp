@@ -91,5 +91,32 @@ TEST(IntegratorsLightTracedImage, TheLargestUseAtOnceSoFarHolds) {
   EXPECT_EQ(tracer.times_traced(0), 2u);
 }
 
+TEST(IntegratorsLightTracedImage, LookupsAlongARowAgreeWithLookupsOfOnePixel) {
+  // A sparse image with empty rows, a full row and scattered pixels.
+  std::vector<Splat> splats;
+  uint32_t path = 0;
+  for (uint32_t pixel : {0u, 3u, 4u, 7u, 17u, 18u, 19u, 20u, 21u, 22u, 23u, 30u}) {
+    splats.push_back({.pixel = pixel, .path = path++, .radiance = Rgb(float(pixel) + 1.0f)});
+  }
+  const LightTracedSample image(splats, {}, kWidth, kHeight, path);
+  // Left to right along each row (the tile loop's order), from any first column.
+  for (int first_x = 0; first_x < kWidth; ++first_x) {
+    LightTracedSample::RowPosition position;
+    for (int y = 0; y < kHeight; ++y) {
+      for (int x = first_x; x < kWidth; ++x) {
+        EXPECT_EQ(image.at_in_row({x, y}, position), image.at({x, y})) << x << " " << y;
+      }
+    }
+  }
+  // Any other order too: a pixel left of the previous one is searched for again.
+  LightTracedSample::RowPosition position;
+  for (const glm::ivec2 pixel : {glm::ivec2{7, 0}, glm::ivec2{3, 0}, glm::ivec2{4, 0},
+                                 glm::ivec2{1, 2}, glm::ivec2{6, 3}, glm::ivec2{0, 0}}) {
+    EXPECT_EQ(image.at_in_row(pixel, position), image.at(pixel)) << pixel.x << " " << pixel.y;
+  }
+  EXPECT_EQ(image.at({7, 0}), Rgb(8.0f));
+  EXPECT_EQ(image.at({5, 0}), Rgb(0.0f));
+}
+
 }  // namespace
 }  // namespace prism
