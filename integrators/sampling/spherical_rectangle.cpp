@@ -30,21 +30,6 @@ Vec2 Rectangle::extent_of(const Vec3& q) const {
           std::clamp(glm::dot(o, unit_y) / length_y, 0.0f, 1.0f)};
 }
 
-BilinearCorners solid_angle_corners(const Rectangle& rectangle, const Vec3& p) {
-  // The four corners' squared distances in the four lanes of one register (Lanes3, all of its
-  // lanes): one square root and one division for all of them (this runs once per light sample).
-  const Vec3 d = rectangle.corner - p;
-  const float x0 = glm::dot(d, rectangle.unit_x), y0 = glm::dot(d, rectangle.unit_y);
-  const float z = glm::dot(d, rectangle.normal);
-  const float x1 = x0 + rectangle.length_x, y1 = y0 + rectangle.length_y;
-  const Lanes3 x = {x0, x1, x0, x1}, y = {y0, y0, y1, y1};
-  const Lanes3 r2 = x * x + y * y + z * z;
-  const Lanes3 w = 1.0f / (r2 * square_roots(r2));
-  const float sum = (w[0] + w[1]) + (w[2] + w[3]);
-  if (!std::isfinite(sum) || !(sum > 0.0f)) return {1.0f, 1.0f, 1.0f, 1.0f};
-  return {w[0], w[1], w[2], w[3]};
-}
-
 SphericalRectangle::SphericalRectangle(const Rectangle& rectangle, const Vec3& reference)
     : reference_(reference),
       unit_x_(rectangle.unit_x),

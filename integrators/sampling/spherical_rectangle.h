@@ -1,7 +1,9 @@
 #pragma once
 
+#include <cmath>
 #include <optional>
 
+#include "core/lanes3.h"
 #include "core/math.h"
 #include "integrators/sampling/bilinear.h"
 
@@ -26,8 +28,22 @@ struct Rectangle {
 /// For sample_bilinear() on the rectangle's extent (point_at()): the density uniform in solid
 /// angle seen from `p`, cos / distance^2, at its four corners, up to one factor (1 /
 /// distance^3: the cosine's distance to the plane is the same for all). Equal weights when
-/// they are not finite (p at a corner, or distances beyond float's range).
-BilinearCorners solid_angle_corners(const Rectangle& rectangle, const Vec3& p);
+/// they are not finite (p at a corner, or distances beyond float's range). Inline, as
+/// sample_bilinear() is.
+inline BilinearCorners solid_angle_corners(const Rectangle& rectangle, const Vec3& p) {
+  // The four corners' squared distances in the four lanes of one register (Lanes3, all of its
+  // lanes): one square root and one division for all of them (this runs once per light sample).
+  const Vec3 d = rectangle.corner - p;
+  const float x0 = glm::dot(d, rectangle.unit_x), y0 = glm::dot(d, rectangle.unit_y);
+  const float z = glm::dot(d, rectangle.normal);
+  const float x1 = x0 + rectangle.length_x, y1 = y0 + rectangle.length_y;
+  const Lanes3 x = {x0, x1, x0, x1}, y = {y0, y0, y1, y1};
+  const Lanes3 r2 = x * x + y * y + z * z;
+  const Lanes3 w = 1.0f / (r2 * square_roots(r2));
+  const float sum = (w[0] + w[1]) + (w[2] + w[3]);
+  if (!std::isfinite(sum) || !(sum > 0.0f)) return {1.0f, 1.0f, 1.0f, 1.0f};
+  return {w[0], w[1], w[2], w[3]};
+}
 
 /// Relative tolerance of the rectangle tests: of the cosine between two edges, and of a fourth
 /// corner's distance from where the rectangle puts it (MeshLight).
