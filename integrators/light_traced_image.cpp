@@ -31,22 +31,19 @@ LightTracedSample::LightTracedSample(std::vector<Splat> splats, std::vector<Caus
 }
 
 Rgb LightTracedSample::at(glm::ivec2 pixel) const {
-  const uint32_t begin = row_begin_[size_t(pixel.y)], end = row_begin_[size_t(pixel.y) + 1];
-  if (begin == end) return Rgb(0.0f);
-  const uint32_t index = uint32_t(pixel.y) * uint32_t(width_) + uint32_t(pixel.x);
-  const auto first = pixels_.begin() + begin, last = pixels_.begin() + end;
-  const auto it = std::lower_bound(first, last, index);
-  return it != last && *it == index ? radiance_[size_t(it - pixels_.begin())] : Rgb(0.0f);
+  RowPosition position;
+  return at_in_row(pixel, position);
 }
 
 Rgb LightTracedSample::at_in_row(glm::ivec2 pixel, RowPosition& position) const {
   const uint32_t index = uint32_t(pixel.y) * uint32_t(width_) + uint32_t(pixel.x);
-  if (position.y != pixel.y ||
-      (position.next > position.begin && pixels_[position.next - 1] >= index)) {
-    const uint32_t begin = row_begin_[size_t(pixel.y)], end = row_begin_[size_t(pixel.y) + 1];
-    const auto first = pixels_.begin() + begin, last = pixels_.begin() + end;
-    position = {pixel.y, begin, uint32_t(std::lower_bound(first, last, index) - pixels_.begin()),
-                end};
+  // Entries before the row's are of earlier rows, all below index: one at or above it means
+  // the pixel is left of the previous one.
+  if (position.y != pixel.y || (position.next > 0 && pixels_[position.next - 1] >= index)) {
+    const auto first = pixels_.begin() + row_begin_[size_t(pixel.y)];
+    const auto last = pixels_.begin() + row_begin_[size_t(pixel.y) + 1];
+    position = {pixel.y, uint32_t(std::lower_bound(first, last, index) - pixels_.begin()),
+                uint32_t(last - pixels_.begin())};
   } else {
     while (position.next < position.end && pixels_[position.next] < index) ++position.next;
   }

@@ -47,8 +47,8 @@ class LightTracedSample {
   Rgb at(glm::ivec2 pixel) const;
   /// Where at_in_row() is in the entries of one row.
   struct RowPosition {
-    int y = -1;  ///< the row; another row starts over
-    uint32_t begin = 0, next = 0, end = 0;
+    int y = -1;                  ///< the row; another row starts over
+    uint32_t next = 0, end = 0;  ///< the first entry not yet passed, the row's end
   };
   /// at(), for pixels taken along a row left to right: the entries of `position`'s row are
   /// searched once, at its first pixel, then walked forward. Any order of pixels gives at()'s

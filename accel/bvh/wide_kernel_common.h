@@ -1,6 +1,7 @@
-// Helpers shared by the wide BVH's kernels. No include guard and no includes on purpose: each
-// wide_traversal_<isa>.cpp includes this file first, inside its own namespace (see
-// wide_kernel_body.h), so nothing here is shared with code built for another instruction set.
+// Helpers shared by the wide BVH's kernels. No include guard and no includes on purpose (but
+// core/sphere_test_body.h, which is written the same way): each wide_traversal_<isa>.cpp includes
+// this file first, inside its own namespace (see wide_kernel_body.h), so nothing here is shared
+// with code built for another instruction set.
 
 #define PRISM_KERNEL_INLINE inline __attribute__((always_inline))
 

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "core/angles.h"
-#include "core/lanes3.h"
 #include "integrators/sampling/warp.h"
 
 namespace prism {
