@@ -120,6 +120,9 @@ class Film {
     const char* state = reinterpret_cast<const char*>(&pixels_[index(p)]);
     for (size_t line = 0; line < sizeof(FilmPixel); line += 64) __builtin_prefetch(state + line, 1);
   }
+  /// prefetch() of only the cache line holding the state's counts (samples, progress,
+  /// converged): all an empty sample touches.
+  void prefetch_counts(glm::ivec2 p) const { __builtin_prefetch(&pixels_[index(p)].samples, 1); }
   /// Every pixel of the window, row-major.
   std::span<FilmPixel> pixels() { return pixels_; }
   std::span<const FilmPixel> pixels() const { return pixels_; }

@@ -51,6 +51,13 @@ Rgb LightTracedSample::at_in_row(glm::ivec2 pixel, RowPosition& position) const 
                                                                          : Rgb(0.0f);
 }
 
+bool LightTracedSample::row_is_empty(int y, int x0, int x1) const {
+  const uint32_t row = uint32_t(y) * uint32_t(width_);
+  const auto last = pixels_.begin() + row_begin_[size_t(y) + 1];
+  const auto next = std::lower_bound(pixels_.begin() + row_begin_[size_t(y)], last, row + x0);
+  return next == last || *next >= row + uint32_t(x1);
+}
+
 /// One sample index being traced (or traced): its chunks, handed out to the threads that ask.
 struct LightTracedImage::Tracing {
   explicit Tracing(uint32_t chunk_count)

@@ -54,6 +54,9 @@ class LightTracedSample {
   /// searched once, at its first pixel, then walked forward. Any order of pixels gives at()'s
   /// value; a pixel left of the previous one in the same row is searched for again.
   Rgb at_in_row(glm::ivec2 pixel, RowPosition& position) const;
+
+  /// Whether no pixel x0 <= x < x1 of row y (inside the image) received anything.
+  bool row_is_empty(int y, int x0, int x1) const;
   /// The caustic vertices, in path order, and the number of paths they came from.
   const std::vector<CausticVertex>& vertices() const { return vertices_; }
   uint32_t paths() const { return paths_; }

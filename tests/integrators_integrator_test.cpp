@@ -3,12 +3,16 @@
 // adaptive sampling, and images independent of the thread count and of concurrent renders.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <initializer_list>
 #include <memory>
+#include <span>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "core/camera_coverage.h"
 #include "core/error.h"
@@ -232,11 +236,30 @@ TEST(IntegratorsIntegrator, ConcurrentRendersOfOneInstanceMatchSequentialOnes) {
   }
 }
 
+/// Renders `film` as the progressive loop does: in passes, the samples [0, 3) of every pixel
+/// first and then the rest, tile by tile.
+void render_in_two_passes(const Integrator& integrator, const RenderContext& context, Film& film) {
+  const std::unique_ptr<TileRenderer> renderer = integrator.start(context);
+  const uint32_t spp = uint32_t(std::max(1, context.spp));
+  const uint32_t split = std::min(3u, spp);
+  const PixelRect& w = film.window();
+  for (const SampleRange range : {SampleRange{0, split}, SampleRange{split, spp}}) {
+    for (int y = w.begin.y; y < w.end.y; y += 8) {
+      for (int x = w.begin.x; x < w.end.x; x += 8) {
+        const Tile tile{{x, y}, {std::min(x + 8, w.end.x), std::min(y + 8, w.end.y)}};
+        renderer->render_tile(tile, range, film);
+      }
+    }
+  }
+}
+
 TEST(IntegratorsIntegrator, UnseenPixelsTakeTheSamplesTracingWouldGive) {
   // The box seen from farther back, so that a border of the frame sees nothing: the tile loop
-  // fills those pixels without tracing them, and the film must be the one tracing gives, bit
-  // for bit, for every integrator, with the light tracer's caustics (glass sphere), adaptive
-  // sampling and a crop window; with an environment map nothing may be skipped.
+  // fills those pixels without tracing them (only counting their samples, when nothing can land
+  // on them), and the film must be the one tracing gives, bit for bit, state and image, for
+  // every integrator, with the light tracer's caustics (glass sphere), adaptive sampling, a crop
+  // window, and in one range of samples or in two passes; with an environment map nothing may
+  // be skipped.
   Scene box = test::cornell_box({.spheres = true, .sphere_material = MaterialType::kGlass});
   box.camera.position = Vec3(0.0f, 1.0f, 5.5f);
   Scene with_environment = test::cornell_box({.spheres = true});
@@ -262,16 +285,31 @@ TEST(IntegratorsIntegrator, UnseenPixelsTakeTheSamplesTracingWouldGive) {
         context.adaptive_batch = batch;
         context.adaptive_tolerance = 0.2f;
         Film skipped(in.size, in.size, crop), traced(in.size, in.size, crop);
+        Film skipped_in_passes(in.size, in.size, crop), traced_in_passes(in.size, in.size, crop);
         context.skip_unseen_pixels = true;
         integrator->render(context, skipped);
+        render_in_two_passes(*integrator, context, skipped_in_passes);
         context.skip_unseen_pixels = false;
         integrator->render(context, traced);
-        const Image a = skipped.resolve(), b = traced.resolve();
-        ASSERT_EQ(a.pixels.size(), b.pixels.size());
-        for (size_t i = 0; i < a.pixels.size(); ++i) {
-          ASSERT_EQ(std::bit_cast<uint32_t>(a.pixels[i]), std::bit_cast<uint32_t>(b.pixels[i]))
-              << "channel value " << i;
+        render_in_two_passes(*integrator, context, traced_in_passes);
+        for (const auto& [a_film, b_film] :
+             {std::pair{&skipped, &traced}, std::pair{&skipped_in_passes, &traced_in_passes}}) {
+          SCOPED_TRACE(a_film == &skipped ? "one range" : "two passes");
+          const std::span<const FilmPixel> a_state = std::as_const(*a_film).pixels();
+          const std::span<const FilmPixel> b_state = std::as_const(*b_film).pixels();
+          ASSERT_EQ(a_state.size(), b_state.size());
+          for (size_t i = 0; i < a_state.size(); ++i) {
+            ASSERT_EQ(std::memcmp(&a_state[i], &b_state[i], sizeof(FilmPixel)), 0)
+                << "film state of pixel " << i;
+          }
+          const Image a = a_film->resolve(), b = b_film->resolve();
+          ASSERT_EQ(a.pixels.size(), b.pixels.size());
+          for (size_t i = 0; i < a.pixels.size(); ++i) {
+            ASSERT_EQ(std::bit_cast<uint32_t>(a.pixels[i]), std::bit_cast<uint32_t>(b.pixels[i]))
+                << "channel value " << i;
+          }
         }
+        const Image a = skipped.resolve();
         const std::string integrator_name(name);
         const bool sky_seen =
             &in != &inputs[0] && (integrator_name == "path" || integrator_name == "direct");

@@ -118,5 +118,31 @@ TEST(IntegratorsLightTracedImage, LookupsAlongARowAgreeWithLookupsOfOnePixel) {
   EXPECT_EQ(image.at({5, 0}), Rgb(0.0f));
 }
 
+TEST(IntegratorsLightTracedImage, ARunOfARowIsEmptyExactlyWhenNoPixelOfItReceivedAnything) {
+  // Rows 0 and 2 with scattered pixels, row 1 empty, row 3 full but for its ends.
+  std::vector<Splat> splats;
+  uint32_t path = 0;
+  for (uint32_t pixel : {0u, 3u, 4u, 7u, 18u, 22u, 25u, 26u, 27u, 28u, 29u, 30u}) {
+    splats.push_back({.pixel = pixel, .path = path++, .radiance = Rgb(1.0f)});
+  }
+  const LightTracedSample image(splats, {}, kWidth, kHeight, path);
+  // Every run [x0, x1) of every row against a look at each of its pixels.
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x0 = 0; x0 < kWidth; ++x0) {
+      for (int x1 = x0 + 1; x1 <= kWidth; ++x1) {
+        bool empty = true;
+        for (int x = x0; x < x1; ++x) empty = empty && image.at({x, y}) == Rgb(0.0f);
+        EXPECT_EQ(image.row_is_empty(y, x0, x1), empty) << y << ": " << x0 << " " << x1;
+      }
+    }
+  }
+  EXPECT_TRUE(image.row_is_empty(1, 0, kWidth));
+  EXPECT_FALSE(image.row_is_empty(3, 0, kWidth));
+  EXPECT_TRUE(image.row_is_empty(0, 5, 7));
+  // An image without splats.
+  const LightTracedSample nothing({}, {}, kWidth, kHeight, 1);
+  for (int y = 0; y < kHeight; ++y) EXPECT_TRUE(nothing.row_is_empty(y, 0, kWidth)) << y;
+}
+
 }  // namespace
 }  // namespace prism
