@@ -13,6 +13,7 @@
 #include "core/app/cli.h"
 #include "core/app/mpi_world.h"
 #include "core/error.h"
+#include "core/huge_page_heap.h"
 
 namespace {
 
@@ -78,6 +79,9 @@ void keep_freed_memory() {
 
 int main(int argc, char** argv) {
   keep_freed_memory();
+  // What the scene's parsing and the BVH's build allocate next, in huge pages: ~1,300 fewer
+  // page faults for a CS184 mesh scene, on the single thread before the render.
+  prism::advise_huge_pages_at_heap_top(size_t{16} << 20);
   int code = 0;
   {
     prism::MpiWorld world;
