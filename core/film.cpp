@@ -117,7 +117,7 @@ void Film::accumulate(const Film& part) {
   non_finite_.fetch_add(part.non_finite_samples());
 }
 
-Image Film::resolve() const {
+Image Film::resolve(ImagePixels buffer) const {
   Image image;
   image.width = window_.width();
   image.height = window_.height();
@@ -129,7 +129,11 @@ Image Film::resolve() const {
       "R",   "G",   "B", "albedo.R",      "albedo.G",   "albedo.B",   "N.X",
       "N.Y", "N.Z", "Z", "sampleCount.Y", "variance.R", "variance.G", "variance.B"};
   const int c = kChannels;
-  image.pixels.assign(pixels_.size() * c, 0.0f);
+  if (buffer.size() == pixels_.size() * c) {
+    image.pixels = std::move(buffer);  // zeros, as below
+  } else {
+    image.pixels.assign(pixels_.size() * c, 0.0f);
+  }
   for (size_t i = 0; i < pixels_.size(); ++i) {
     const FilmPixel& s = pixels_[i];
     const uint32_t n = s.samples;

@@ -143,7 +143,10 @@ class Film {
   /// shading normal, not renormalised); Z (mean depth, 0 where rays escape); sampleCount.Y
   /// (samples taken); variance.R/G/B (estimated variance of the pixel mean: sample variance /
   /// n, 0 for fewer than two samples). A pure function of the pixel states.
-  Image resolve() const;
+  Image resolve() const { return resolve(ImagePixels()); }
+  /// resolve(), into `buffer` when it holds the image's window().pixel_count() * kChannels
+  /// values, all zero (a buffer made ahead: ImageBufferAhead); into a new one otherwise.
+  Image resolve(ImagePixels buffer) const;
   /// Number of channels resolve() produces, and the index of the first of each group.
   static constexpr int kChannels = 14;
   static constexpr int kAlbedoChannel = 3;

@@ -307,6 +307,29 @@ TEST(CoreFilm, ImageCountsNonFiniteValues) {
   EXPECT_EQ(Image{}.count_non_finite(), 0u);
 }
 
+TEST(CoreFilm, ResolvesIntoABufferOfZerosMadeAheadOrIntoItsOwn) {
+  // A crop window, with samples in some pixels only (the others stay zero in the image).
+  Film film(6, 5, PixelRect{{1, 1}, {5, 4}});
+  film.add_sample({2, 1}, Rgb(0.5f, 1.0f, 2.0f), aov(Rgb(0.25f), Vec3(0.0f, 0.0f, 1.0f), 3.0f));
+  film.add_sample({2, 1}, Rgb(1.5f, 0.0f, 4.0f));
+  film.add_sample({4, 3}, Rgb(0.0f));
+  const Image reference = film.resolve();
+  const size_t values = film.window().pixel_count() * Film::kChannels;
+  ASSERT_EQ(reference.pixels.size(), values);
+  ImagePixels ahead(values, 0.0f);
+  const float* ahead_data = ahead.data();
+  const Image into_ahead = film.resolve(std::move(ahead));
+  EXPECT_EQ(into_ahead.pixels.data(), ahead_data) << "the buffer made ahead was not used";
+  EXPECT_TRUE(into_ahead.pixels == reference.pixels);
+  EXPECT_EQ(into_ahead.channel_names, reference.channel_names);
+  // A buffer of another size is not the image's: the film makes its own.
+  for (const size_t size : {values - 1, values + Film::kChannels}) {
+    const Image own = film.resolve(ImagePixels(size, 0.0f));
+    EXPECT_EQ(own.pixels.size(), values);
+    EXPECT_TRUE(own.pixels == reference.pixels);
+  }
+}
+
 TEST(CoreFilm, ConcurrentSamplesOnDifferentPixelsMatchSequential) {
   constexpr int kWidth = 37, kHeight = 23, kSamples = 16, kThreads = 4;
   // Every sample a pure function of (pixel, index), some of them non-finite.

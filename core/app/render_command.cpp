@@ -26,6 +26,7 @@
 #include "core/app/render_state.h"
 #include "core/app/resume.h"
 #include "core/film.h"
+#include "core/image_buffer_ahead.h"
 #include "core/progress.h"
 #include "core/strings.h"
 
@@ -195,6 +196,9 @@ int render_command(const RenderOptions& given) {
   // (color/image_io.h). Only now: a thread started while it loads (the interrupt handlers' one)
   // would wait for the load to end. Not under MPI, whose lanes are threads of their own.
   const ImageIoPreload image_io_preload(distributed ? 1 : r.thread_limit->threads());
+  // The image's buffer is made beside the render too (core/image_buffer_ahead.h).
+  ImageBufferAhead image_buffer(film.window().pixel_count() * Film::kChannels,
+                                distributed ? 1 : r.thread_limit->threads());
   const auto run_start = std::chrono::steady_clock::now();
   std::function<void(const Film&)> checkpoint;
   if (!options.checkpoint.empty()) {
@@ -240,7 +244,7 @@ int render_command(const RenderOptions& given) {
                  static_cast<unsigned long long>(record.non_finite_samples));
   }
 
-  const RenderedFrame frame = resolve_frame(r, film, record);
+  const RenderedFrame frame = resolve_frame(r, film, record, image_buffer.take());
   const Image& image = frame.image;
   const ImageMetadata& metadata = frame.metadata;
   if (is_part(settings) && outputs.files.front().kind == OutputKind::kSceneLinearExr) {

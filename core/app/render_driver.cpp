@@ -177,9 +177,10 @@ void start_render(PreparedRender& r, RenderRecord& record) {
   r.renderer = r.integrator->start(*r.context);
 }
 
-RenderedFrame resolve_frame(const PreparedRender& r, const Film& film, RenderRecord& record) {
+RenderedFrame resolve_frame(const PreparedRender& r, const Film& film, RenderRecord& record,
+                            ImagePixels buffer) {
   RenderedFrame frame;
-  frame.image = film.resolve();
+  frame.image = film.resolve(std::move(buffer));
   record.camera_samples = total_camera_samples(frame.image, r.settings);
   frame.metadata = make_provenance(r.settings, r.params, record);
   return frame;

@@ -81,8 +81,10 @@ struct RenderedFrame {
 };
 
 /// film.resolve() and its provenance, with record.camera_samples counted from the image: what
-/// every output of the render is made from.
-RenderedFrame resolve_frame(const PreparedRender& r, const Film& film, RenderRecord& record);
+/// every output of the render is made from. The image goes into `buffer` when it fits
+/// (Film::resolve()).
+RenderedFrame resolve_frame(const PreparedRender& r, const Film& film, RenderRecord& record,
+                            ImagePixels buffer = {});
 
 /// A whole render in this process, in memory: prepare_render(kMemory), start_render(), every
 /// pass of the schedule (render_progressively(), stopping at options.time_limit), then
