@@ -16,8 +16,10 @@ namespace prism {
 /// How: blocks of at most kHeapBlockBytes are allocated until `bytes` are covered, the whole
 /// 2 MiB-aligned pages inside them advised, and the blocks freed back to the heap's top, from
 /// which glibc carves the next allocations in order. That needs the blocks to come from the heap
-/// (below M_MMAP_THRESHOLD) and the top to stay (M_TRIM_THRESHOLD), as prism's main() sets them;
-/// where either does not hold, or THP is off, only speed changes. Nothing is touched: pages the
+/// (below M_MMAP_THRESHOLD) and the top to stay (M_TRIM_THRESHOLD), as prism's main() sets them,
+/// and the next blocks to come from the top, as they do while the heap has no freed block that
+/// fits them: at start-up, and in the fresh heap of a thread that has not allocated much. Where
+/// any of that does not hold, or THP is off, only speed changes. Nothing is touched: pages the
 /// thread never uses cost nothing.
 void advise_huge_pages_at_heap_top(size_t bytes);
 
