@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "color/image_output.h"
+#include "core/app/render_options.h"
 #include "tests/support/app_test_helpers.h"
 #include "tests/support/image_compare.h"
 #include "tests/support/test_support.h"
@@ -62,6 +63,26 @@ void expect_same_bits_for_passes_and_threads(const fs::path& scene, int spp,
     } else {
       EXPECT_TRUE(same_bits(file.image, *reference));
     }
+  }
+}
+
+TEST(AppPasses, DefaultPassesHoldAtLeastFourSamples) {
+  // spp -> samples per pass without --pass-samples: all of them below 4, then 4 up to 256 spp
+  // (64 passes there), then spp / 64 (about 64 passes).
+  const std::pair<int, int> expected[] = {{1, 1},   {2, 2},   {3, 3},     {4, 4},    {5, 4},
+                                          {16, 4},  {64, 4},  {255, 4},   {256, 4},  {257, 4},
+                                          {320, 5}, {512, 8}, {1000, 15}, {4096, 64}};
+  for (const auto& [spp, pass_samples] : expected) {
+    EXPECT_EQ(default_pass_samples(spp), pass_samples) << spp << " spp";
+  }
+  // A render takes it when --pass-samples is not given, and says so in its EXR.
+  const TestDirs dirs("passes_default");
+  for (const auto& [spp, passes] : {std::pair{"3", "1 of 1"}, std::pair{"64", "16 of 16"}}) {
+    const fs::path out = dirs.out / (std::string("s") + spp + ".exr");
+    const ProgramResult r = run_prism(
+        {"render", kSpheres.string(), "-r", "8", "6", "-s", spp, "-q", "-f", out.string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_image_file(out).attribute("prism:passes"), passes) << spp << " spp";
   }
 }
 

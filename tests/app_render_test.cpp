@@ -324,8 +324,9 @@ TEST(AppRender, InMemoryRenderHasThePixelsAndProvenanceOfTheFile) {
   const TestDirs dirs("app_in_memory");
   const std::string scene = (bundled_scene_dir() / "cornell_spheres.json").string();
   const auto out = dirs.out / "a.exr";
-  const auto r = run_prism({"render", scene, "-r", "40", "30", "-s", "4", "--seed", "5", "-m", "3",
-                            "--exr-type", "float", "-q", "-f", out.string()});
+  const auto r =
+      run_prism({"render", scene, "-r", "40", "30", "-s", "4", "--seed", "5", "-m", "3",
+                 "--pass-samples", "1", "--exr-type", "float", "-q", "-f", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const ImageFileContents file = read_image_file(out);
 
@@ -335,6 +336,7 @@ TEST(AppRender, InMemoryRenderHasThePixelsAndProvenanceOfTheFile) {
   options.spp = 4;
   options.seed = "5";
   options.max_depth = 3;
+  options.pass_samples = 1;
   options.quiet = true;
   int calls = 0;
   const RenderedFrame frame = render_in_memory(options, [&] { ++calls; });
@@ -363,6 +365,7 @@ TEST(AppRender, InMemoryRenderStopsWhenTheHookThrows) {
   RenderOptions options;
   options.resolution = {16, 12};
   options.spp = 8;
+  options.pass_samples = 1;
   options.quiet = true;
   int calls = 0;
   const auto stop = [&] {

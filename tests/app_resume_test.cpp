@@ -85,11 +85,14 @@ void write_bytes(const fs::path& path, const std::string& bytes) {
 
 // --- Time limit and resume --------------------------------------------------------------------
 
-/// 64 x 48 at `spp` samples, in 64 passes for a multiple of 64. Runs stopped by a time limit
-/// add -t 1: still far from done at the limit on a fast machine (a resume may use any number of
-/// threads: it changes no bit).
-std::vector<std::string> spheres(int spp, const fs::path& scene = kSpheres) {
-  return {scene.string(), "-r", "64", "48", "-s", std::to_string(spp)};
+/// 64 x 48 at `spp` samples (a multiple of 64), in 64 passes (the default makes fewer below
+/// 256 spp) or in passes of `pass_samples`. Runs stopped by a time limit add -t 1: still far
+/// from done at the limit on a fast machine (a resume may use any number of threads: it changes
+/// no bit).
+std::vector<std::string> spheres(int spp, const fs::path& scene = kSpheres, int pass_samples = 0) {
+  const std::vector<std::string> args = {scene.string(), "-r", "64",
+                                         "48",           "-s", std::to_string(spp)};
+  return plus(args, {"--pass-samples", std::to_string(pass_samples > 0 ? pass_samples : spp / 64)});
 }
 
 TEST(AppResume, TimeLimitThenResumeGivesTheUninterruptedBits) {
@@ -144,10 +147,11 @@ TEST(AppResume, AdaptiveSamplingResumesToTheUninterruptedBits) {
   // carry on each pixel's convergence test from the checkpoint's sums.
   TestDirs dirs("resume_adaptive");
   const fs::path ref = dirs.out / "ref.exr", out = dirs.out / "out.exr", ck = dirs.out / "ck.exr";
-  const std::vector<std::string> adaptive = plus(spheres(128), {"-a", "4", "0.05"});
-  run_ok(render_args(plus(adaptive, {"-f", ref.string()})));
-  run_ok(render_args(plus(adaptive, {"--pass-samples", "3", "-t", "1", "--time-limit", "0.05",
-                                     "--checkpoint", ck.string(), "-f", out.string()})));
+  const std::vector<std::string> adaptive = {"-a", "4", "0.05"};
+  run_ok(render_args(plus(plus(spheres(128), adaptive), {"-f", ref.string()})));
+  run_ok(render_args(
+      plus(plus(spheres(128, kSpheres, 3), adaptive),
+           {"-t", "1", "--time-limit", "0.05", "--checkpoint", ck.string(), "-f", out.string()})));
   ASSERT_EQ(read_image_file(out).attribute("prism:stoppedBy"), "time limit");
   run_ok(resume_args(ck));
   const ImageFileContents resumed = read_image_file(out);

@@ -138,7 +138,7 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
                   "render only the samples FIRST <= s < LAST of every pixel (of -s in all)")
       ->type_name("FIRST LAST");
   render.add_option("--pass-samples", o.pass_samples,
-                    "samples per pixel in each pass (default: spp / 64, at least 1)");
+                    "samples per pixel in each pass (default: spp / 64, at least 4)");
   render.add_flag("--literal-camera", o.literal_camera,
                   "COLLADA and model files: use the file's camera, not the homework framing");
   add_color_options(render, o.color);

@@ -182,7 +182,7 @@ RenderSettings resolve_render_settings(const RenderOptions& options, const Scene
     }
     s.samples = SampleRange{uint32_t(first), uint32_t(last)};
   }
-  s.pass_samples = uint32_t(options.pass_samples.value_or(std::max(1, s.spp / kDefaultPasses)));
+  s.pass_samples = uint32_t(options.pass_samples.value_or(default_pass_samples(s.spp)));
   return s;
 }
 

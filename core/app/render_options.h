@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -99,9 +100,19 @@ struct RenderSettings {
   uint32_t pass_samples = 1;  ///< samples per pixel and pass
 };
 
-/// Samples per pass when --pass-samples is not given: spp / kDefaultPasses, at least 1, so that
-/// a render has about that many passes to stop, checkpoint or report after.
+/// Samples per pass when --pass-samples is not given: spp / kDefaultPasses, so that a long
+/// render has about that many passes to stop, checkpoint or report after, but at least
+/// kMinDefaultPassSamples (all of them below that): every pass reads and writes every pixel's
+/// film state again, which at one sample per pass cost 2.5-4% of a 64-spp render
+/// (docs/PERFORMANCE.md, 2026-12-07, twelfth session). Renders of 256 spp and more keep 64
+/// passes.
 inline constexpr int kDefaultPasses = 64;
+inline constexpr int kMinDefaultPassSamples = 4;
+
+/// The samples per pass of a render of `spp` samples without --pass-samples.
+inline int default_pass_samples(int spp) {
+  return std::max(std::min(kMinDefaultPassSamples, spp), spp / kDefaultPasses);
+}
 
 /// Checks every option value that does not depend on the scene: ranges, finite numbers, features
 /// not supported yet (--set is checked by parse_param_assignments(), the output files by

@@ -73,7 +73,7 @@ def test_provenance_is_the_exrs(small):
     assert provenance["prism:seed"] == "5"
     assert provenance["prism:max_depth"] == "3"
     assert provenance["prism:resolution"] == "40x30"
-    assert provenance["prism:passes"] == "4 of 4"
+    assert provenance["prism:passes"] == "1 of 1"  # passes of at least 4 samples
     assert provenance["prism:stoppedBy"] == "-"
     assert provenance["prism:version"] == prism.__version__
     assert provenance["prism:command_line"].startswith("prism.render(")
