@@ -114,8 +114,8 @@ class Film {
   /// The state of `pixel` (inside window()), for the tile loops and for storage.
   FilmPixel& pixel(glm::ivec2 p) { return pixels_[index(p)]; }
   const FilmPixel& pixel(glm::ivec2 p) const { return pixels_[index(p)]; }
-  /// Starts loading the state of `p` (inside window()) into the cache for a write soon: at one
-  /// sample per pass a pixel's state has left the cache since its last sample.
+  /// Starts loading the state of `p` (inside window()) into the cache for a write soon: between
+  /// passes a pixel's state leaves the cache.
   void prefetch(glm::ivec2 p) const {
     const char* state = reinterpret_cast<const char*>(&pixels_[index(p)]);
     for (size_t line = 0; line < sizeof(FilmPixel); line += 64) __builtin_prefetch(state + line, 1);

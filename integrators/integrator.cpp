@@ -138,7 +138,8 @@ void PixelTileRenderer::render_tile(const Tile& tile, SampleRange range, Film& f
         row_seen ? std::clamp(seeing.end.x, traced_begin, tile.end.x) : tile.end.x;
     take_unseen_samples(y, tile.begin.x, traced_begin);
     for (int x = traced_begin; x < traced_end; ++x) {
-      // With one sample per pass (the default at 64 spp) the next pixel's film state is cold.
+      // With few samples per pass (4 at the default of 64 spp) the next pixel's film state is
+      // cold.
       if (x + 1 < traced_end) film.prefetch({x + 1, y});
       take_samples({x, y}, true, film.pixel({x, y}));
     }

@@ -87,9 +87,9 @@ class LightTracedSample {
 /// dropped from the cache and traced again has the same bits. The cache keeps as many of the
 /// most recent indices as a caller has needed at once (see sample()): all of a render's spp when
 /// tiles come with every sample, as MPI's schedule hands them out, so that each index is traced
-/// once (kMemoryBudget bounds what that holds, see max_paths()); one when a render goes one
-/// sample per pass, the default at 64 spp, so that a pass's image is freed after it and the
-/// next pass reuses its memory instead of faulting in fresh pages. Thread-safe.
+/// once (kMemoryBudget bounds what that holds, see max_paths()); a pass's samples when a render
+/// goes in passes (4 at the default of 64 spp), so that a pass's images are freed after it and
+/// the next pass reuses their memory instead of faulting in fresh pages. Thread-safe.
 class LightTracedImage {
  public:
   /// Traces the paths [first, last) of sample index `sample` and appends their splats and
