@@ -25,16 +25,10 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
 
+using test::finish_child;
 using test::read_bytes;
 using test::temp_files_in;
 using test::write_text;
-
-/// Ends the child process of a death test: 0 when `ok`, else 1 after saying why on stderr.
-[[noreturn]] void finish_child(bool ok, const std::string& why) {
-  if (!ok) std::fprintf(stderr, "%s\n", why.c_str());
-  std::fflush(stderr);
-  _exit(ok ? 0 : 1);
-}
 
 void wait_until(const std::atomic<bool>& flag) {
   while (!flag.load()) std::this_thread::sleep_for(milliseconds(1));

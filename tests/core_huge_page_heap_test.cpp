@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 #include <malloc.h>
-#include <unistd.h>
 
 #include <cinttypes>
 #include <cstdio>
@@ -16,8 +15,12 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/child_process.h"
+
 namespace prism {
 namespace {
+
+using test::finish_child;
 
 /// The kernel's THP mode: "always", "madvise" or "never" ("" when it cannot be read).
 std::string thp_mode() {
@@ -49,13 +52,6 @@ std::vector<EligibleRange> huge_page_eligible_mappings() {
   return ranges;
 }
 
-/// Ends the child process of a death test: 0 when `ok`, else 1 after saying why on stderr.
-[[noreturn]] void finish_child(bool ok, const std::string& why) {
-  if (!ok) std::fprintf(stderr, "%s\n", why.c_str());
-  std::fflush(stderr);
-  _exit(ok ? 0 : 1);
-}
-
 /// Allocates `count` blocks of 3 KiB (the size of OpenImageIO's string-table blocks), with or
 /// without the advice first, and returns how many of them lie in huge-page-eligible memory.
 int eligible_blocks_after(bool advised, int count) {
@@ -79,7 +75,7 @@ int eligible_blocks_after(bool advised, int count) {
   return eligible;
 }
 
-bool sanitized() {
+bool under_a_sanitizer() {
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
   return true;  // the sanitizers' allocators take neither glibc's thresholds nor its heap
 #else
@@ -88,7 +84,7 @@ bool sanitized() {
 }
 
 TEST(CoreHugePageHeap, SmallBlocksAfterTheAdviceLandInHugePageEligibleMemory) {
-  if (sanitized()) GTEST_SKIP() << "a sanitizer's allocator replaces glibc's heap";
+  if (under_a_sanitizer()) GTEST_SKIP() << "a sanitizer's allocator replaces glibc's heap";
   if (thp_mode() != "madvise") {
     GTEST_SKIP() << "transparent huge pages are '" << thp_mode()
                  << "' here, not 'madvise': advice changes nothing to tell apart";

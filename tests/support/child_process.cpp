@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 #include <thread>
 
@@ -120,6 +121,12 @@ pid_t dead_pid() {
   int status = 0;
   waitpid(pid, &status, 0);
   return pid;
+}
+
+[[noreturn]] void finish_child(bool ok, const std::string& why) {
+  if (!ok) std::fprintf(stderr, "%s\n", why.c_str());
+  std::fflush(stderr);
+  _exit(ok ? 0 : 1);
 }
 
 }  // namespace prism::test

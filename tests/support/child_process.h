@@ -33,6 +33,10 @@ struct TimedProgramResult {
   double cpu_seconds = 0.0;   ///< user + system time of the process
 };
 
+/// Ends the child process of a death test: exit code 0 when `ok`, else 1 after saying why on
+/// stderr (with _exit: a child that forked from a test must not run the test's teardown).
+[[noreturn]] void finish_child(bool ok, const std::string& why);
+
 /// run_prism (test_support.h) with `limits` applied to the program, timed. Setting a limit that
 /// fails, or dropping root, makes the child exit with 126 before prism runs.
 TimedProgramResult run_prism_limited(const std::vector<std::string>& args,
