@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -20,16 +21,20 @@ namespace {
 /// before it have been taken by then, under oneTBB's roughly first-in first-out queue; the
 /// std::thread implementation runs them at once).
 void wait_for_tasks_beside() {
-  bool ran = false;
-  std::mutex mutex;
-  std::condition_variable done;
-  run_beside([&] {
-    std::lock_guard lock(mutex);
-    ran = true;
-    done.notify_all();
+  struct Flag {
+    bool ran = false;
+    std::mutex mutex;
+    std::condition_variable done;
+  };
+  // Shared with the task, which may still come after a wait that timed out.
+  const auto flag = std::make_shared<Flag>();
+  run_beside([flag] {
+    std::lock_guard lock(flag->mutex);
+    flag->ran = true;
+    flag->done.notify_all();
   });
-  std::unique_lock lock(mutex);
-  done.wait_for(lock, std::chrono::seconds(10), [&] { return ran; });
+  std::unique_lock lock(flag->mutex);
+  flag->done.wait_for(lock, std::chrono::seconds(10), [&] { return flag->ran; });
 }
 
 TEST(CoreImageBufferAhead, MakesTheBufferOfZerosBesideTheCallerAndHandsItOverOnce) {
