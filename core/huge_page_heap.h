@@ -13,9 +13,9 @@ namespace prism {
 /// 2-4 KiB (its string table), 25 MiB that cost ~7,000 page faults at ~12 us each on the
 /// virtual machines prism is measured on, against 12 huge-page faults of ~0.1-0.4 ms.
 ///
-/// How: blocks of at most kHeapBlockBytes are allocated until `bytes` are covered, the whole
-/// 2 MiB-aligned pages inside them advised, and the blocks freed back to the heap's top, from
-/// which glibc carves the next allocations in order. That needs the blocks to come from the heap
+/// How: one block of `bytes` (at most kHeapBlockBytes) is allocated, the whole 2 MiB-aligned
+/// pages inside it advised, and the block freed back to the heap's top, from which glibc carves
+/// the next allocations in order. That needs the block to come from the heap
 /// (below M_MMAP_THRESHOLD) and the top to stay (M_TRIM_THRESHOLD), as prism's main() sets them,
 /// and the next blocks to come from the top, as they do while the heap has no freed block that
 /// fits them: at start-up, and in the fresh heap of a thread that has not allocated much. Where
@@ -23,7 +23,7 @@ namespace prism {
 /// thread never uses cost nothing.
 void advise_huge_pages_at_heap_top(size_t bytes);
 
-/// The largest block advise_huge_pages_at_heap_top() allocates: below the 32 MiB from which
+/// The most advise_huge_pages_at_heap_top() advises (its one block): below the 32 MiB from which
 /// main() lets glibc map blocks of their own.
 inline constexpr size_t kHeapBlockBytes = size_t{31} << 20;
 

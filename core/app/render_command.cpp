@@ -195,10 +195,10 @@ int render_command(const RenderOptions& given) {
   // The image module loads on one of the render's threads while the others render
   // (color/image_io.h). Only now: a thread started while it loads (the interrupt handlers' one)
   // would wait for the load to end. Not under MPI, whose lanes are threads of their own.
-  const ImageIoPreload image_io_preload(distributed ? 1 : r.thread_limit->threads());
+  const int threads_beside = distributed ? 1 : r.thread_limit->threads();
+  const ImageIoPreload image_io_preload(threads_beside);
   // The image's buffer is made beside the render too (core/image_buffer_ahead.h).
-  ImageBufferAhead image_buffer(film.window().pixel_count() * Film::kChannels,
-                                distributed ? 1 : r.thread_limit->threads());
+  ImageBufferAhead image_buffer(film.window().pixel_count() * Film::kChannels, threads_beside);
   const auto run_start = std::chrono::steady_clock::now();
   std::function<void(const Film&)> checkpoint;
   if (!options.checkpoint.empty()) {
